@@ -1,0 +1,29 @@
+"""Granular media: validated, citable parameter sets.
+
+Each shipped medium is one TOML file in ``data/`` with a ``[meta]`` table naming its source. Load them
+with :func:`get`, list them with :func:`available`, read a user's own file with :func:`load`, or build a
+:class:`Material` directly in Python.
+"""
+
+from ._material import (
+    BekkerParameters,
+    ContinuumParameters,
+    LiCoefficients,
+    Material,
+    Provenance,
+    RFTParameters,
+)
+from ._registry import available, from_dict, get, load
+
+__all__ = [
+    "BekkerParameters",
+    "ContinuumParameters",
+    "LiCoefficients",
+    "Material",
+    "Provenance",
+    "RFTParameters",
+    "available",
+    "from_dict",
+    "get",
+    "load",
+]
