@@ -1,0 +1,1 @@
+"""The ``terradyn`` command line (``python -m terradyn``)."""

@@ -1,0 +1,95 @@
+"""``terradyn intrude BODY``: RFT force on a body moving through the medium at given depths."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import typer
+
+from .. import materials
+from ..errors import check_finite
+from ..kinematics import Pose2D, Twist2D
+from ..studies.intrusion import intrusion_forces
+from ._bodies import BodyKind, BodyOptions, build_body
+from ._common import OutputFormat, emit, parse_float_list, save_figure
+
+
+def register(app: typer.Typer) -> None:
+    app.command("intrude")(intrude)
+
+
+def intrude(
+    body: BodyKind = typer.Argument(..., help="Body shape."),
+    depth: str = typer.Option(..., "--depth", help="Depth of the body origin [m]: 0.03, list or a:b:n."),
+    angle: float = typer.Option(0.0, "--angle", help="Body rotation about +y [deg], clockwise."),
+    direction: float = typer.Option(90.0, "--direction", help="Motion direction below +x [deg]."),
+    material: str = typer.Option("generic", "--material", help="Medium name or TOML file."),
+    element_size: float | None = typer.Option(None, "--element-size", help="Element size [m]."),
+    length: float | None = BodyOptions.length,
+    width: float = BodyOptions.width,
+    thickness: float | None = BodyOptions.thickness,
+    radius: float | None = BodyOptions.radius,
+    side: float | None = BodyOptions.side,
+    base: float | None = BodyOptions.base,
+    height: float | None = BodyOptions.height,
+    tip_offset: float | None = BodyOptions.tip_offset,
+    grouser_count: int | None = BodyOptions.grouser_count,
+    grouser_height: float | None = BodyOptions.grouser_height,
+    grouser_thickness: float | None = BodyOptions.grouser_thickness,
+    hub_radius: float | None = BodyOptions.hub_radius,
+    flap_count: int | None = BodyOptions.flap_count,
+    flap_length: float | None = BodyOptions.flap_length,
+    flap_angle: float | None = BodyOptions.flap_angle,
+    points_file: Path | None = BodyOptions.points_file,
+    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
+    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
+    plot: Path | None = typer.Option(None, "--plot", help="Plot force vs depth (or tractions)."),
+) -> None:
+    """RFT force [N] and torque [N m] on BODY moving through the medium (quasi-static)."""
+    depths = parse_float_list("--depth", depth)
+    shape = build_body(
+        body, width, length=length, thickness=thickness, radius=radius, side=side, base=base,
+        height=height, tip_offset=tip_offset, grouser_count=grouser_count,
+        grouser_height=grouser_height, grouser_thickness=grouser_thickness, hub_radius=hub_radius,
+        flap_count=flap_count, flap_length=flap_length, flap_angle=flap_angle,
+        points_file=points_file,
+    )
+    mat = materials.get(material)
+    theta = math.radians(check_finite("--angle", angle))
+    direc = math.radians(check_finite("--direction", direction))
+    table = intrusion_forces(
+        shape, mat, depths, angle=theta, direction=direc, element_size=element_size
+    )
+    if plot is not None:
+        _plot(shape, mat, table, depths, theta, direc, element_size, plot)
+    rows = table.records()
+    if len(rows) == 1:
+        rec = rows[0]
+        emit({k: rec[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out)
+    else:
+        emit(rows, fmt, out, title=f"{body.value} in {mat.name}")
+
+
+def _plot(shape, mat, table, depths, theta, direc, element_size, path) -> None:  # type: ignore[no-untyped-def]
+    import numpy as np
+
+    from ..kinematics import to_world
+    from ..plotting import plot_body_tractions, plot_force_depth
+    from ..rft import rft_element_forces
+
+    if len(depths) > 1:
+        ax = plot_force_depth(
+            table.columns["depth_m"],
+            {"F_x": table.columns["force_x_N"], "F_z": table.columns["force_z_N"]},
+            title=f"RFT, {mat.name}",
+        )
+    else:
+        pose = Pose2D(0.0, -depths[0], theta)
+        el = rft_element_forces(
+            shape, mat, pose, Twist2D(math.cos(direc), -math.sin(direc), 0.0),
+            element_size=element_size,
+        )
+        outline = [to_world(np.asarray(p), pose) for p in shape.outline()]
+        ax = plot_body_tractions(outline, el.positions, el.forces, title=f"RFT, {mat.name}")
+    save_figure(ax.figure, path)

@@ -1,0 +1,69 @@
+"""``terradyn rft``: the RFT force law itself."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import typer
+
+from .. import materials
+from ..errors import InputError, check_finite
+from ..rft import li2013_alpha_material
+from ._common import OutputFormat, emit, save_figure
+
+app = typer.Typer(help="Granular resistive force theory (Li et al. 2013 law).", no_args_is_help=True)
+
+
+@app.command("alpha")
+def alpha(
+    material: str = typer.Option("generic", "--material", help="Medium name or TOML file."),
+    beta: float | None = typer.Option(None, "--beta", help="Element orientation beta [deg]."),
+    gamma: float | None = typer.Option(None, "--gamma", help="Direction of motion gamma [deg]."),
+    grid: bool = typer.Option(False, "--grid", help="Tabulate the whole alpha map instead."),
+    step: float = typer.Option(5.0, "--step", help="Grid step [deg] for --grid."),
+    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
+    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
+    plot: Path | None = typer.Option(None, "--plot", help="Heat-map plot of the grid (PNG/PDF)."),
+) -> None:
+    """Stress per depth (alpha_x, alpha_z) [N/m^3] at one (beta, gamma), or the whole map (--grid)."""
+    mat = materials.get(material)
+    if not grid:
+        if beta is None or gamma is None:
+            raise InputError("--beta/--gamma", (beta, gamma), "both angles in degrees, or --grid")
+        if plot is not None:
+            raise InputError("--plot", str(plot), "only with --grid")
+        b = math.radians(check_finite("--beta", beta))
+        g = math.radians(check_finite("--gamma", gamma))
+        ax, az = li2013_alpha_material(b, g, mat)
+        emit({"alpha_x_N_per_m3": float(ax), "alpha_z_N_per_m3": float(az)}, fmt, out)
+        return
+    if not (0.25 <= check_finite("--step", step) <= 45.0):
+        raise InputError("--step", step, "a grid step in [0.25, 45] degrees")
+    b = np.arange(-90.0, 90.0 + 1e-9, step)
+    g = np.arange(-90.0, 90.0 + 1e-9, step)
+    bb, gg = np.meshgrid(np.radians(b), np.radians(g), indexing="ij")
+    ax, az = li2013_alpha_material(bb, gg, mat)
+    rows = [
+        {
+            "beta_deg": float(bi),
+            "gamma_deg": float(gi),
+            "alpha_x_N_per_m3": float(axi),
+            "alpha_z_N_per_m3": float(azi),
+        }
+        for bi, gi, axi, azi in zip(
+            np.degrees(bb).ravel(), np.degrees(gg).ravel(), ax.ravel(), az.ravel(), strict=True
+        )
+    ]
+    if plot is not None:
+        import matplotlib.pyplot as plt
+
+        from ..plotting import plot_alpha_map
+
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+        plot_alpha_map(bb, gg, az, label=r"$\alpha_z$", ax=axes[0])
+        plot_alpha_map(bb, gg, ax, label=r"$\alpha_x$", ax=axes[1])
+        fig.suptitle(f"RFT alpha map, {mat.name}")
+        save_figure(fig, plot)
+    emit(rows, fmt, out, title=f"alpha map, {mat.name}")

@@ -1,0 +1,26 @@
+"""Granular resistive force theory: the Li et al. (2013) law and its sum over bodies."""
+
+from .forces import (
+    Backend,
+    RFTElementForces,
+    RFTModel,
+    as_elements,
+    rft_element_forces,
+    rft_wrench,
+    rft_wrench_many,
+)
+from .li2013 import li2013_alpha, li2013_alpha_from_directions, li2013_alpha_material, rft_angles
+
+__all__ = [
+    "Backend",
+    "RFTElementForces",
+    "RFTModel",
+    "as_elements",
+    "li2013_alpha",
+    "li2013_alpha_from_directions",
+    "li2013_alpha_material",
+    "rft_angles",
+    "rft_element_forces",
+    "rft_wrench",
+    "rft_wrench_many",
+]

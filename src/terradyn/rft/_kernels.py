@@ -1,0 +1,115 @@
+"""Numba kernels of plane RFT (Li et al. 2013 law summed over surface elements).
+
+Plain functions of NumPy arrays and floats in SI. Shapes: ``mid``, ``nrm`` (N, 2) body-frame element
+midpoints [m] and outward unit normals [-]; ``lengths`` (N,) [m]; ``coeffs`` (9,) Li coefficients in
+the order A00, A10, B01, B11, Bm11, C01, C11, Cm11, D10 [-]; ``scale`` [N/m^3]. Poses are
+(x [m], z [m], theta [rad] about +y), twists (vx [m/s], vz [m/s], omega [rad/s] about +y). The NumPy
+reference is :func:`terradyn.rft.forces.rft_element_forces`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+import numpy as np
+
+__all__ = ["rft_wrench_kernel", "rft_wrench_many_kernel"]
+
+
+@nb.njit(cache=True, fastmath=True, nogil=True)
+def rft_wrench_kernel(
+    mid: np.ndarray,
+    nrm: np.ndarray,
+    lengths: np.ndarray,
+    width: float,
+    x: float,
+    z: float,
+    theta: float,
+    vx: float,
+    vz: float,
+    omega: float,
+    coeffs: np.ndarray,
+    scale: float,
+    surface: float,
+    about_x: float,
+    about_z: float,
+) -> tuple[float, float, float]:
+    """Soil wrench (F_x [N], F_z [N], torque about +y [N m] about (about_x, about_z)) on a body.
+
+    Only elements below ``surface`` [m] whose outward normal has a positive component along their
+    velocity (leading elements) carry the traction ``scale * (-alpha_x, alpha_z) * depth``.
+    """
+    a00, a10, b01, b11, bm11 = coeffs[0], coeffs[1], coeffs[2], coeffs[3], coeffs[4]
+    c01, c11, cm11, d10 = coeffs[5], coeffs[6], coeffs[7], coeffs[8]
+    c = math.cos(theta)
+    s = math.sin(theta)
+    fx = 0.0
+    fz = 0.0
+    ty = 0.0
+    for i in range(lengths.shape[0]):
+        rx = c * mid[i, 0] + s * mid[i, 1]
+        rz = -s * mid[i, 0] + c * mid[i, 1]
+        depth = surface - (z + rz)
+        if depth <= 0.0:
+            continue
+        ex = vx + omega * rz
+        ez = vz - omega * rx
+        nx = c * nrm[i, 0] + s * nrm[i, 1]
+        nz = -s * nrm[i, 0] + c * nrm[i, 1]
+        if nx * ex + nz * ez <= 0.0:
+            continue
+        inv = 1.0 / math.sqrt(ex * ex + ez * ez)
+        cg = ex * inv
+        sg = -ez * inv
+        c2b = nz * nz - nx * nx
+        s2b = -2.0 * nx * nz
+        az = a00 + a10 * c2b + b01 * sg + b11 * (s2b * cg + c2b * sg) + bm11 * (c2b * sg - s2b * cg)
+        ax = c01 * cg + c11 * (c2b * cg - s2b * sg) + cm11 * (c2b * cg + s2b * sg) + d10 * s2b
+        w = scale * depth * lengths[i] * width
+        f_x = -ax * w
+        f_z = az * w
+        fx += f_x
+        fz += f_z
+        ty += (z + rz - about_z) * f_x - (x + rx - about_x) * f_z
+    return fx, fz, ty
+
+
+@nb.njit(cache=True, parallel=True, nogil=True)
+def rft_wrench_many_kernel(
+    mid: np.ndarray,
+    nrm: np.ndarray,
+    lengths: np.ndarray,
+    width: float,
+    poses: np.ndarray,
+    twists: np.ndarray,
+    coeffs: np.ndarray,
+    scale: float,
+    surface: float,
+    about: np.ndarray,
+) -> np.ndarray:
+    """Wrenches (M, 3) for M poses (M, 3) and twists (M, 3); torque about ``about`` (M, 2) [m]."""
+    m = poses.shape[0]
+    out = np.empty((m, 3))
+    for k in nb.prange(m):
+        fx, fz, ty = rft_wrench_kernel(
+            mid,
+            nrm,
+            lengths,
+            width,
+            poses[k, 0],
+            poses[k, 1],
+            poses[k, 2],
+            twists[k, 0],
+            twists[k, 1],
+            twists[k, 2],
+            coeffs,
+            scale,
+            surface,
+            about[k, 0],
+            about[k, 1],
+        )
+        out[k, 0] = fx
+        out[k, 1] = fz
+        out[k, 2] = ty
+    return out

@@ -1,0 +1,1 @@
+"""Named experiments: each a plain function returning a result."""
