@@ -14,7 +14,7 @@ import math
 import numba as nb
 import numpy as np
 
-__all__ = ["rft_wrench_kernel", "rft_wrench_many_kernel"]
+__all__ = ["rft_wrench_kernel", "rft_wrench_many_kernel", "rft_wrench_phases_kernel"]
 
 
 @nb.njit(cache=True, fastmath=True, nogil=True)
@@ -108,6 +108,34 @@ def rft_wrench_many_kernel(
             surface,
             about[k, 0],
             about[k, 1],
+        )
+        out[k, 0] = fx
+        out[k, 1] = fz
+        out[k, 2] = ty
+    return out
+
+
+@nb.njit(cache=True, nogil=True)
+def rft_wrench_phases_kernel(
+    mid: np.ndarray,
+    nrm: np.ndarray,
+    lengths: np.ndarray,
+    width: float,
+    x: float,
+    z: float,
+    thetas: np.ndarray,
+    vx: float,
+    vz: float,
+    omega: float,
+    coeffs: np.ndarray,
+    scale: float,
+    surface: float,
+) -> np.ndarray:
+    """Wrenches (P, 3) of one body at P rotation phases ``thetas`` [rad]; torque about the origin."""
+    out = np.empty((thetas.shape[0], 3))
+    for k in range(thetas.shape[0]):
+        fx, fz, ty = rft_wrench_kernel(
+            mid, nrm, lengths, width, x, z, thetas[k], vx, vz, omega, coeffs, scale, surface, x, z
         )
         out[k, 0] = fx
         out[k, 1] = fz
