@@ -1,5 +1,12 @@
 """Matplotlib plots: each takes a result and ``ax=None``, returns the axes, never shows."""
 
 from .core import plot_alpha_map, plot_body_tractions, plot_force_depth
+from .wheels import new_force_slip_figure, plot_force_slip
 
-__all__ = ["plot_alpha_map", "plot_body_tractions", "plot_force_depth"]
+__all__ = [
+    "new_force_slip_figure",
+    "plot_alpha_map",
+    "plot_body_tractions",
+    "plot_force_depth",
+    "plot_force_slip",
+]

@@ -1,0 +1,266 @@
+"""``terradyn wheel``: steady wheel solves, sweeps and free rolling with RFT or Wong-Reece."""
+
+from __future__ import annotations
+
+import math
+from enum import Enum
+from pathlib import Path
+from typing import Any
+
+import typer
+
+from .. import materials
+from ..errors import InputError, check_finite
+from ..geometry import Body
+from ..materials import Material
+from ..terrain import TerrainModel
+from ._bodies import BodyKind, BodyOptions, build_body
+from ._common import OutputFormat, emit, parse_float_list, progress, save_figure
+
+app = typer.Typer(help="Wheel locomotion: steady solves, sweeps, free rolling.", no_args_is_help=True)
+
+
+def register(root: typer.Typer) -> None:
+    root.add_typer(app, name="wheel")
+
+
+class WheelShape(str, Enum):
+    circular = "circular"
+    grousered = "grousered"
+    flapped = "flapped"
+    c_leg = "c-leg"
+    polygon = "polygon"
+
+
+_SHAPE_TO_BODY = {
+    WheelShape.circular: BodyKind.wheel,
+    WheelShape.grousered: BodyKind.grousered,
+    WheelShape.flapped: BodyKind.flapped,
+    WheelShape.c_leg: BodyKind.c_leg,
+    WheelShape.polygon: BodyKind.polygon,
+}
+
+MODEL_NAMES = ("rft", "wong-reece")
+
+
+class WongReeceOptions:
+    c1 = typer.Option(0.43, "--c1", help="Wong-Reece theta_m coefficient c1 [-].")
+    c2 = typer.Option(0.32, "--c2", help="Wong-Reece theta_m coefficient c2 [-].")
+    exit_angle = typer.Option(0.0, "--exit-angle", help="Wong-Reece exit angle [deg].")
+
+
+def model_factory(name: str, *, c1: float, c2: float, exit_angle_deg: float,
+                  element_size: float | None):  # type: ignore[no-untyped-def]
+    """A function ``material -> terrain model`` for a model name."""
+    key = name.strip().lower()
+    if key == "rft":
+        from ..rft import RFTModel
+
+        return lambda mat: RFTModel(mat, element_size=element_size)
+    if key in ("wong-reece", "wongreece", "wr"):
+        from ..terramechanics import WongReeceModel
+
+        exit_angle = math.radians(check_finite("--exit-angle", exit_angle_deg))
+        return lambda mat: WongReeceModel(mat, c1=c1, c2=c2, exit_angle=exit_angle)
+    raise InputError("--model", name, f"one of {list(MODEL_NAMES)}")
+
+
+def wheel_body(shape: WheelShape, width: float, flags: dict[str, Any]) -> Body:
+    return build_body(_SHAPE_TO_BODY[shape], width, **flags)
+
+
+def _steady_record(res: Any) -> dict[str, Any]:
+    rec = res.summary()
+    rec.update(
+        {
+            "slip": res.slip,
+            "load_N": res.load_N,
+            "omega_rad_s": res.omega_rad_s,
+            "forward_velocity_m_s": res.forward_velocity_m_s,
+            "tractive_efficiency": res.tractive_efficiency,
+            "entry_angle_deg": math.degrees(res.entry_angle_rad),
+            "model": res.model,
+        }
+    )
+    if res.phase_count > 1:
+        rec.update(
+            {
+                "drawbar_pull_min_N": res.drawbar_pull_min_N,
+                "drawbar_pull_max_N": res.drawbar_pull_max_N,
+                "drive_torque_min_Nm": res.drive_torque_min_Nm,
+                "drive_torque_max_Nm": res.drive_torque_max_Nm,
+                "sinkage_min_m": res.sinkage_min_m,
+                "sinkage_max_m": res.sinkage_max_m,
+            }
+        )
+    if "drawbar_load_N" in res.extra:
+        rec["drawbar_load_N"] = res.extra["drawbar_load_N"]
+    return rec
+
+
+def _plot_steady(body: Body, mat: Material, res: Any, path: Path, element_size: float | None) -> None:
+    import numpy as np
+
+    from ..kinematics import Pose2D, Twist2D, to_world
+    from ..plotting import plot_body_tractions
+    from ..rft import rft_element_forces
+
+    pose = Pose2D(0.0, res.axle_height_m, 0.0)
+    el = rft_element_forces(body, mat, pose, Twist2D(res.forward_velocity_m_s, 0.0, res.omega_rad_s),
+                            element_size=element_size)
+    outline = [to_world(np.asarray(p), pose) for p in body.outline()]
+    ax = plot_body_tractions(outline, el.positions, el.forces,
+                             title=f"{mat.name}, W = {res.load_N:g} N, s = {res.slip:.3g} (RFT)")
+    save_figure(ax.figure, path)
+
+
+@app.command("steady")
+def steady(
+    material: str = typer.Option("MS", "--material", help="Medium name or TOML file."),
+    load: float = typer.Option(..., "--load", help="Vertical load W [N]."),
+    slip: float = typer.Option(..., "--slip", help="Slip s = 1 - V/(omega r), in [-1, 1]."),
+    omega: float = typer.Option(1.0, "--omega", help="Spin rate [rad/s]."),
+    model: str = typer.Option("rft", "--model", help="Terrain model: rft or wong-reece."),
+    shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
+    radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
+    width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
+    thickness: float | None = BodyOptions.thickness,
+    grouser_count: int | None = BodyOptions.grouser_count,
+    grouser_height: float | None = BodyOptions.grouser_height,
+    grouser_thickness: float | None = BodyOptions.grouser_thickness,
+    hub_radius: float | None = BodyOptions.hub_radius,
+    flap_count: int | None = BodyOptions.flap_count,
+    flap_length: float | None = BodyOptions.flap_length,
+    flap_angle: float | None = BodyOptions.flap_angle,
+    points_file: Path | None = BodyOptions.points_file,
+    phases: int = typer.Option(16, "--phases", help="Wheel angles per period (non-circular)."),
+    element_size: float | None = typer.Option(None, "--element-size", help="Element size [m]."),
+    c1: float = WongReeceOptions.c1,
+    c2: float = WongReeceOptions.c2,
+    exit_angle: float = WongReeceOptions.exit_angle,
+    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
+    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
+    plot: Path | None = typer.Option(None, "--plot", help="Wheel with traction arrows (RFT)."),
+) -> None:
+    """Sinkage, drawbar pull, drive torque and power of a wheel at a load and slip."""
+    from ..locomotion import wheel_steady
+
+    body = wheel_body(shape, width, _shape_flags(shape, locals()))
+    mat = materials.get(material)
+    factory = model_factory(model, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
+    res = wheel_steady(body, factory(mat), load, slip, omega=omega, phase_count=phases)
+    if plot is not None:
+        _plot_steady(body, mat, res, plot, element_size)
+    emit(_steady_record(res), fmt, out)
+
+
+@app.command("self-propelled")
+def self_propelled(
+    material: str = typer.Option("MS", "--material", help="Medium name or TOML file."),
+    load: float = typer.Option(..., "--load", help="Vertical load W [N]."),
+    drawbar_load: float = typer.Option(0.0, "--drawbar-load", help="Rearward load to pull [N]."),
+    omega: float = typer.Option(1.0, "--omega", help="Spin rate [rad/s]."),
+    model: str = typer.Option("rft", "--model", help="Terrain model: rft or wong-reece."),
+    shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
+    radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
+    width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
+    thickness: float | None = BodyOptions.thickness,
+    grouser_count: int | None = BodyOptions.grouser_count,
+    grouser_height: float | None = BodyOptions.grouser_height,
+    grouser_thickness: float | None = BodyOptions.grouser_thickness,
+    hub_radius: float | None = BodyOptions.hub_radius,
+    flap_count: int | None = BodyOptions.flap_count,
+    flap_length: float | None = BodyOptions.flap_length,
+    flap_angle: float | None = BodyOptions.flap_angle,
+    points_file: Path | None = BodyOptions.points_file,
+    phases: int = typer.Option(16, "--phases", help="Wheel angles per period (non-circular)."),
+    element_size: float | None = typer.Option(None, "--element-size", help="Element size [m]."),
+    c1: float = WongReeceOptions.c1,
+    c2: float = WongReeceOptions.c2,
+    exit_angle: float = WongReeceOptions.exit_angle,
+    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
+    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
+) -> None:
+    """Slip and sinkage at which the wheel's pull balances a drawbar load (0: free rolling)."""
+    from ..locomotion import wheel_self_propelled
+
+    body = wheel_body(shape, width, _shape_flags(shape, locals()))
+    factory = model_factory(model, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
+    res = wheel_self_propelled(body, factory(materials.get(material)), load,
+                               drawbar_load=drawbar_load, omega=omega, phase_count=phases)
+    emit(_steady_record(res), fmt, out)
+
+
+@app.command("sweep")
+def sweep(
+    material: str = typer.Option("MS", "--material", help="Media, comma separated."),
+    load: str = typer.Option("80,130,150,190", "--load", help="Loads [N]: list or a:b:n."),
+    slip: str = typer.Option("-0.7:0.7:15", "--slip", help="Slips: list or a:b:n."),
+    model: str = typer.Option("rft,wong-reece", "--model", help="Models, comma separated."),
+    omega: float = typer.Option(1.0, "--omega", help="Spin rate [rad/s]."),
+    shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
+    radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
+    width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
+    thickness: float | None = BodyOptions.thickness,
+    grouser_count: int | None = BodyOptions.grouser_count,
+    grouser_height: float | None = BodyOptions.grouser_height,
+    grouser_thickness: float | None = BodyOptions.grouser_thickness,
+    hub_radius: float | None = BodyOptions.hub_radius,
+    flap_count: int | None = BodyOptions.flap_count,
+    flap_length: float | None = BodyOptions.flap_length,
+    flap_angle: float | None = BodyOptions.flap_angle,
+    points_file: Path | None = BodyOptions.points_file,
+    phases: int = typer.Option(16, "--phases", help="Wheel angles per period (non-circular)."),
+    element_size: float | None = typer.Option(None, "--element-size", help="Element size [m]."),
+    c1: float = WongReeceOptions.c1,
+    c2: float = WongReeceOptions.c2,
+    exit_angle: float = WongReeceOptions.exit_angle,
+    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
+    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
+    plot: Path | None = typer.Option(None, "--plot", help="Force-slip curves (PNG/PDF)."),
+) -> None:
+    """Force-slip and sinkage-slip curves over media x models x loads x slips."""
+    from ..locomotion import force_slip_sweep
+
+    body = wheel_body(shape, width, _shape_flags(shape, locals()))
+    media = [materials.get(m) for m in material.split(",") if m.strip()]
+    if not media:
+        raise InputError("--material", material, "one or more media, comma separated")
+    names = [m.strip() for m in model.split(",") if m.strip()]
+    factories = {
+        n: model_factory(n, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
+        for n in names
+    }
+    if not factories:
+        raise InputError("--model", model, f"one or more of {list(MODEL_NAMES)}")
+    loads = parse_float_list("--load", load)
+    slips = parse_float_list("--slip", slip)
+    total = len(media) * len(factories) * len(loads) * len(slips)
+    with progress(total, "wheel sweep") as advance:
+        table = force_slip_sweep(body, media, factories, loads, slips, omega=omega,
+                                 phase_count=phases, on_point=advance)
+    if plot is not None:
+        plot_sweep(table.columns, [m.name for m in media], plot)
+    failures = table.metadata["failures"]
+    if failures:
+        typer.echo(f"terradyn: {len(failures)} point(s) not solved, e.g. {failures[0]}", err=True)
+    emit(table.records(), fmt, out, title="wheel sweep")
+
+
+def plot_sweep(columns: dict[str, Any], media: list[str], path: Path) -> None:
+    from ..plotting import new_force_slip_figure, plot_force_slip
+
+    fig, axes = new_force_slip_figure(len(media))
+    for row, name in zip(axes, media, strict=True):
+        plot_force_slip(columns, material=name, axes=row)
+    fig.tight_layout()
+    save_figure(fig, path)
+
+
+def _shape_flags(shape: WheelShape, values: dict[str, Any]) -> dict[str, Any]:
+    keys = ("radius", "thickness", "grouser_count", "grouser_height", "grouser_thickness",
+            "hub_radius", "flap_count", "flap_length", "flap_angle", "points_file")
+    flags = {k: values[k] for k in keys}
+    if shape in (WheelShape.flapped, WheelShape.polygon):
+        flags["radius"] = None  # the default --radius belongs to circular and grousered wheels
+    return flags
