@@ -43,7 +43,7 @@ class TableResult:
         keys = list(self.columns)
         return [{k: self.columns[k][i].item() for k in keys} for i in range(len(self))]
 
-    def to_dataframe(self):  # type: ignore[no-untyped-def]
+    def to_dataframe(self) -> Any:
         import pandas as pd
 
         df = pd.DataFrame({k: np.asarray(v) for k, v in self.columns.items()})

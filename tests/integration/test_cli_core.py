@@ -92,7 +92,7 @@ def test_bad_input_writes_no_partial_file(run_cli, tmp_path):
 
 
 def test_demo_writes_outputs(run_cli, tmp_path):
-    code, out, err = run_cli("demo", "--out", str(tmp_path / "demo"))
+    code, _, err = run_cli("demo", "--out", str(tmp_path / "demo"))
     assert code == 0, err
     files = sorted(p.name for p in (tmp_path / "demo").iterdir())
     assert any(f.endswith(".csv") for f in files)

@@ -72,7 +72,7 @@ def test_custom_material_in_python_and_validation():
     mat = Material("custom", rft=RFTParameters(LiCoefficients.generic(), 2.5e6))
     assert mat.zeta == pytest.approx(2.5e6)
     assert mat.with_zeta(1e6).zeta == pytest.approx(1e6)
-    with pytest.raises(InputError, match="rft.scale"):
+    with pytest.raises(InputError, match=r"rft\.scale"):
         RFTParameters(LiCoefficients.generic(), -1.0)
     with pytest.raises(InputError, match="A00"):
         LiCoefficients(math.nan, 0, 0, 0, 0, 0, 0, 0, 0)

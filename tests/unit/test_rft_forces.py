@@ -123,7 +123,7 @@ def test_model_interface_and_errors():
     assert w.fz > 0
     with pytest.raises(InputError, match="backend"):
         rft_wrench(Plate(0.05, 0.02), MS, Pose2D(), Twist2D(), backend="gpu")
-    with pytest.raises(InputError, match="pose.z"):
+    with pytest.raises(InputError, match=r"pose\.z"):
         Pose2D(0, math.nan, 0)
     with pytest.raises(InputError, match="element_size"):
         rft_wrench(Plate(0.05, 0.02), MS, Pose2D(), Twist2D(), element_size=-1)

@@ -169,7 +169,11 @@ def progress(total: int, description: str) -> Iterator[Callable[[int], None]]:
     """A progress bar with ETA on a terminal, silent in pipes and CI. Yields ``advance(n)``."""
     quiet = not sys.stderr.isatty() or os.environ.get("CI")
     if quiet:
-        yield lambda n=1: None
+
+        def _silent(n: int = 1) -> None:
+            return None
+
+        yield _silent
         return
     from rich.progress import (
         BarColumn,
@@ -188,7 +192,11 @@ def progress(total: int, description: str) -> Iterator[Callable[[int], None]]:
         transient=True,
     ) as bar:
         task = bar.add_task(description, total=total)
-        yield lambda n=1: bar.advance(task, n)
+
+        def _advance(n: int = 1) -> None:
+            bar.advance(task, n)
+
+        yield _advance
 
 
 def iterate_with_progress(items: Iterable[T], total: int, description: str) -> Iterator[T]:

@@ -71,7 +71,7 @@ def intrude(
         emit(rows, fmt, out, title=f"{body.value} in {mat.name}")
 
 
-def _plot(shape, mat, table, depths, theta, direc, element_size, path) -> None:  # type: ignore[no-untyped-def]
+def _plot(shape, mat, table, depths, theta, direc, element_size, path):  # noqa: ANN001
     import numpy as np
 
     from ..kinematics import to_world

@@ -41,10 +41,9 @@ def alpha(
         return
     if not (0.25 <= check_finite("--step", step) <= 45.0):
         raise InputError("--step", step, "a grid step in [0.25, 45] degrees")
-    b = np.arange(-90.0, 90.0 + 1e-9, step)
-    g = np.arange(-90.0, 90.0 + 1e-9, step)
-    bb, gg = np.meshgrid(np.radians(b), np.radians(g), indexing="ij")
-    ax, az = li2013_alpha_material(bb, gg, mat)
+    grid_deg = np.arange(-90.0, 90.0 + 1e-9, step)
+    bb, gg = np.meshgrid(np.radians(grid_deg), np.radians(grid_deg), indexing="ij")
+    map_x, map_z = li2013_alpha_material(bb, gg, mat)
     rows = [
         {
             "beta_deg": float(bi),
@@ -53,7 +52,7 @@ def alpha(
             "alpha_z_N_per_m3": float(azi),
         }
         for bi, gi, axi, azi in zip(
-            np.degrees(bb).ravel(), np.degrees(gg).ravel(), ax.ravel(), az.ravel(), strict=True
+            np.degrees(bb).ravel(), np.degrees(gg).ravel(), map_x.ravel(), map_z.ravel(), strict=True
         )
     ]
     if plot is not None:
@@ -62,8 +61,8 @@ def alpha(
         from ..plotting import plot_alpha_map
 
         fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
-        plot_alpha_map(bb, gg, az, label=r"$\alpha_z$", ax=axes[0])
-        plot_alpha_map(bb, gg, ax, label=r"$\alpha_x$", ax=axes[1])
+        plot_alpha_map(bb, gg, map_z, label=r"$\alpha_z$", ax=axes[0])
+        plot_alpha_map(bb, gg, map_x, label=r"$\alpha_x$", ax=axes[1])
         fig.suptitle(f"RFT alpha map, {mat.name}")
         save_figure(fig, plot)
     emit(rows, fmt, out, title=f"alpha map, {mat.name}")

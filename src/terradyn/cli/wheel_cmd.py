@@ -13,7 +13,6 @@ from .. import materials
 from ..errors import InputError, check_finite
 from ..geometry import Body
 from ..materials import Material
-from ..terrain import TerrainModel
 from ._bodies import BodyKind, BodyOptions, build_body
 from ._common import OutputFormat, emit, parse_float_list, progress, save_figure
 
@@ -49,8 +48,9 @@ class WongReeceOptions:
     exit_angle = typer.Option(0.0, "--exit-angle", help="Wong-Reece exit angle [deg].")
 
 
-def model_factory(name: str, *, c1: float, c2: float, exit_angle_deg: float,
-                  element_size: float | None):  # type: ignore[no-untyped-def]
+def model_factory(
+    name: str, *, c1: float, c2: float, exit_angle_deg: float, element_size: float | None
+) -> Any:
     """A function ``material -> terrain model`` for a model name."""
     key = name.strip().lower()
     if key == "rft":

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -82,7 +83,7 @@ class RFTElementForces:
     wrench: Wrench2D
     about: tuple[float, float]
 
-    def to_dataframe(self):  # type: ignore[no-untyped-def]
+    def to_dataframe(self) -> Any:
         """Per-element table with unit-suffixed columns."""
         import pandas as pd
 
