@@ -71,7 +71,7 @@ def intrude(
         emit(rows, fmt, out, title=f"{body.value} in {mat.name}")
 
 
-def _plot(shape, mat, table, depths, theta, direc, element_size, path):  # noqa: ANN001
+def _plot(shape, mat, table, depths, theta, direc, element_size, path):
     import numpy as np
 
     from ..kinematics import to_world

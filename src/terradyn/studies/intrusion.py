@@ -107,7 +107,13 @@ def alpha_map_plate(
     grid_b, grid_g = np.meshgrid(b, g, indexing="ij")
     bb, gg = grid_b.ravel(), grid_g.ravel()
     poses = np.column_stack((np.zeros_like(bb), np.full_like(bb, -depth), bb))
-    twists = np.column_stack((np.cos(gg), -np.sin(gg), np.zeros_like(gg)))
+    # Motion exactly along a zero-thickness plate has no leading face; take the one-sided limit
+    # (direction + 1e-9 rad), which is what a plate of vanishing thickness sees.
+    edge = np.isclose(np.mod(gg - bb, np.pi), 0.0, atol=1e-12) | np.isclose(
+        np.mod(gg - bb, np.pi), np.pi, atol=1e-12
+    )
+    g_eval = np.where(edge, gg + 1e-9, gg)
+    twists = np.column_stack((np.cos(g_eval), -np.sin(g_eval), np.zeros_like(gg)))
     w = rft_wrench_many(plate, material, poses, twists, element_size=element_size)
     norm = length * width * depth
     return TableResult(
