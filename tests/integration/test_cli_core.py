@@ -97,3 +97,23 @@ def test_demo_writes_outputs(run_cli, tmp_path):
     files = sorted(p.name for p in (tmp_path / "demo").iterdir())
     assert any(f.endswith(".csv") for f in files)
     assert any(f.endswith(".png") for f in files)
+
+
+def test_validate_passes(run_cli):
+    code, out, err = run_cli("validate", "--format", "json")
+    assert code == 0, err
+    rows = json.loads(out)
+    assert rows and all(r["passed"] for r in rows)
+
+
+def test_study_run_and_bad_study_file(run_cli, tmp_path):
+    code, out, err = run_cli("study", "run", "plate-depth", "--quick", "--out", str(tmp_path / "s"),
+                             "--format", "json")
+    assert code == 0, err
+    assert {r["material"] for r in json.loads(out)} >= {"MS", "generic"}
+    assert (tmp_path / "s" / "plate_depth.png").exists()
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[study]\nkind = "plate-depth"\n[parameters]\nlenght_m = 0.1\n')
+    code, _, err = run_cli("study", "run", str(bad), "--out", str(tmp_path / "t"))
+    assert code == 2 and "lenght_m" in err
+    assert not (tmp_path / "t").exists()

@@ -79,9 +79,11 @@ def format_output(
 
 
 def _fmt_cell(value: Any) -> str:
+    from rich.markup import escape
+
     if isinstance(value, float):
         return f"{value:.6g}"
-    return str(value)
+    return escape(str(value))
 
 
 def atomic_write_text(path: str | Path, text: str) -> Path:
