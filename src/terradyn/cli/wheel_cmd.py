@@ -12,6 +12,7 @@ import typer
 from .. import materials
 from ..errors import InputError, check_finite
 from ..geometry import Body
+from ..locomotion.models import MODEL_NAMES
 from ..materials import Material
 from ._bodies import BodyKind, BodyOptions, build_body
 from ._common import OutputFormat, emit, parse_float_list, progress, save_figure
@@ -39,7 +40,6 @@ _SHAPE_TO_BODY = {
     WheelShape.polygon: BodyKind.polygon,
 }
 
-MODEL_NAMES = ("rft", "wong-reece")
 
 
 class WongReeceOptions:
@@ -51,18 +51,11 @@ class WongReeceOptions:
 def model_factory(
     name: str, *, c1: float, c2: float, exit_angle_deg: float, element_size: float | None
 ) -> Any:
-    """A function ``material -> terrain model`` for a model name."""
-    key = name.strip().lower()
-    if key == "rft":
-        from ..rft import RFTModel
+    """A picklable ``material -> terrain model`` factory for a model name."""
+    from ..locomotion.models import ModelSpec
 
-        return lambda mat: RFTModel(mat, element_size=element_size)
-    if key in ("wong-reece", "wongreece", "wr"):
-        from ..terramechanics import WongReeceModel
-
-        exit_angle = math.radians(check_finite("--exit-angle", exit_angle_deg))
-        return lambda mat: WongReeceModel(mat, c1=c1, c2=c2, exit_angle=exit_angle)
-    raise InputError("--model", name, f"one of {list(MODEL_NAMES)}")
+    exit_angle = math.radians(check_finite("--exit-angle", exit_angle_deg))
+    return ModelSpec(name, element_size=element_size, c1=c1, c2=c2, exit_angle=exit_angle)
 
 
 def wheel_body(shape: WheelShape, width: float, flags: dict[str, Any]) -> Body:
@@ -215,6 +208,9 @@ def sweep(
     c1: float = WongReeceOptions.c1,
     c2: float = WongReeceOptions.c2,
     exit_angle: float = WongReeceOptions.exit_angle,
+    scheduler: str = typer.Option("serial", "--scheduler",
+                                  help="serial, local (Dask processes) or a Dask scheduler address."),
+    workers: int | None = typer.Option(None, "--workers", help="Local Dask worker processes."),
     fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
     out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
     plot: Path | None = typer.Option(None, "--plot", help="Force-slip curves (PNG/PDF)."),
@@ -238,7 +234,8 @@ def sweep(
     total = len(media) * len(factories) * len(loads) * len(slips)
     with progress(total, "wheel sweep") as advance:
         table = force_slip_sweep(body, media, factories, loads, slips, omega=omega,
-                                 phase_count=phases, on_point=advance)
+                                 phase_count=phases, on_point=advance, scheduler=scheduler,
+                                 workers=workers)
     if plot is not None:
         plot_sweep(table.columns, [m.name for m in media], plot)
     failures = table.metadata["failures"]
