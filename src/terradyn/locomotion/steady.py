@@ -119,33 +119,40 @@ class _ForceFunction:
     def __init__(self, model: TerrainModel, body: Body, twist: Twist2D, thetas: np.ndarray) -> None:
         self.model, self.body, self.twist, self.thetas = model, body, twist, thetas
         self.surface = float(getattr(model, "surface_level", 0.0))
-        self._kernel: Callable[[float], np.ndarray] | None = None
+        self._rft: tuple[Any, ...] | None = None
         if isinstance(model, RFTModel):
-            from ..rft._kernels import rft_wrench_phases_kernel
-
             el = body.discretize(model.element_size)
             rft = model.material.require_rft()
-            coeffs = rft.coefficients.as_array()
-            args = (el.midpoints, el.normals, el.lengths, el.width)
-
-            def kernel(z: float) -> np.ndarray:
-                return rft_wrench_phases_kernel(
-                    *args, 0.0, z, thetas, twist.vx, twist.vz, twist.omega, coeffs, rft.scale,
-                    self.surface,
-                )
-
-            self._kernel = kernel
+            self._rft = (el.midpoints, el.normals, el.lengths, el.width, rft.coefficients.as_array(),
+                         rft.scale)
 
     def phases(self, z: float) -> np.ndarray:
         """Wrenches (P, 3) over the phases at axle height ``z`` [m] (torque about the axle)."""
-        if self._kernel is not None:
-            return self._kernel(z)
+        tw = self.twist
+        if self._rft is not None:
+            from ..rft._kernels import rft_wrench_phases_kernel
+
+            mid, nrm, lng, width, coeffs, scale = self._rft
+            return rft_wrench_phases_kernel(mid, nrm, lng, width, 0.0, z, self.thetas, tw.vx, tw.vz,
+                                            tw.omega, coeffs, scale, self.surface)
         return np.array(
-            [self.model.wrench(self.body, Pose2D(0.0, z, th), self.twist).as_array() for th in self.thetas]
+            [self.model.wrench(self.body, Pose2D(0.0, z, th), tw).as_array() for th in self.thetas]
         )
 
+    def vertical_many(self, heights: np.ndarray) -> np.ndarray:
+        """Period-averaged vertical force [N] at each axle height (H,) [m]."""
+        tw = self.twist
+        if self._rft is not None:
+            from ..rft._kernels import rft_vertical_mean_kernel
+
+            mid, nrm, lng, width, coeffs, scale = self._rft
+            return rft_vertical_mean_kernel(mid, nrm, lng, width, np.ascontiguousarray(heights, dtype=float),
+                                            self.thetas, tw.vx, tw.vz, tw.omega, coeffs, scale,
+                                            self.surface)
+        return np.array([self.phases(float(z))[:, 1].mean() for z in heights])
+
     def vertical(self, z: float) -> float:
-        return float(self.phases(z)[:, 1].mean())
+        return float(self.vertical_many(np.array([z]))[0])
 
 
 def _lowest_points(body: Body, thetas: np.ndarray) -> np.ndarray:
@@ -159,7 +166,7 @@ def _lowest_points(body: Body, thetas: np.ndarray) -> np.ndarray:
 def _solve_height(fn: _ForceFunction, load: float, top: float, what: str) -> float:
     """Axle height [m] in [0, top] where the averaged vertical force equals ``load``."""
     grid = np.linspace(0.0, top, 17)
-    fz = np.array([fn.vertical(z) for z in grid])
+    fz = fn.vertical_many(grid)
     if fz[0] < load:
         raise SolverError(
             f"{what}: the medium carries at most {fz[0]:.4g} N before the axle reaches the surface, "
@@ -258,22 +265,29 @@ def _contact_angles(
 ) -> tuple[float, float]:
     """Front (entry) and rear (exit) angles [rad] of the loaded contact, from the downward vertical."""
     if isinstance(model, RFTModel):
-        from ..rft import rft_element_forces
+        from ..rft._kernels import rft_contact_angles_kernel
 
-        el = rft_element_forces(
-            body, model.material, pose, twist, surface_level=model.surface_level,
-            element_size=model.element_size,
+        el = body.discretize(model.element_size)
+        hi, lo, found = rft_contact_angles_kernel(
+            el.midpoints, el.normals, pose.x, pose.z, pose.theta, twist.vx, twist.vz, twist.omega,
+            model.surface_level,
         )
-        if not np.any(el.active):
-            return 0.0, 0.0
-        rel = el.positions[el.active] - np.array([pose.x, pose.z])
-        ang = np.arctan2(rel[:, 0], -rel[:, 1])
-        return float(ang.max()), float(ang.min())
+        return (float(hi), float(lo)) if found else (0.0, 0.0)
     angles = getattr(model, "contact_angles", None)
     if callable(angles):
         entry, exit_ = angles(body, pose, twist)
         return float(entry), float(exit_)
-    return math.nan, math.nan
+    # Geometric contact: the arc of the outline below the surface (exit from the model if it has one).
+    pts = np.concatenate(body.outline())
+    c, s = math.cos(pose.theta), math.sin(pose.theta)
+    rx = c * pts[:, 0] + s * pts[:, 1]
+    rz = -s * pts[:, 0] + c * pts[:, 1]
+    under = pose.z + rz < float(getattr(model, "surface_level", 0.0))
+    if not np.any(under):
+        return 0.0, 0.0
+    ang = np.arctan2(rx[under], -rz[under])
+    exit_angle = getattr(model, "exit_angle", None)
+    return float(ang.max()), float(exit_angle) if exit_angle is not None else float(ang.min())
 
 
 def wheel_self_propelled(

@@ -141,3 +141,66 @@ def rft_wrench_phases_kernel(
         out[k, 1] = fz
         out[k, 2] = ty
     return out
+
+
+@nb.njit(cache=True, nogil=True)
+def rft_vertical_mean_kernel(
+    mid: np.ndarray,
+    nrm: np.ndarray,
+    lengths: np.ndarray,
+    width: float,
+    heights: np.ndarray,
+    thetas: np.ndarray,
+    vx: float,
+    vz: float,
+    omega: float,
+    coeffs: np.ndarray,
+    scale: float,
+    surface: float,
+) -> np.ndarray:
+    """Vertical force [N] averaged over the phases ``thetas`` at each body height (H,) [m]."""
+    out = np.empty(heights.shape[0])
+    for j in range(heights.shape[0]):
+        acc = 0.0
+        for k in range(thetas.shape[0]):
+            _, fz, _ = rft_wrench_kernel(
+                mid, nrm, lengths, width, 0.0, heights[j], thetas[k], vx, vz, omega, coeffs, scale,
+                surface, 0.0, heights[j],
+            )
+            acc += fz
+        out[j] = acc / thetas.shape[0]
+    return out
+
+
+@nb.njit(cache=True, nogil=True)
+def rft_contact_angles_kernel(
+    mid: np.ndarray,
+    nrm: np.ndarray,
+    x: float,
+    z: float,
+    theta: float,
+    vx: float,
+    vz: float,
+    omega: float,
+    surface: float,
+) -> tuple[float, float, bool]:
+    """Largest and smallest angle [rad] from the downward vertical (+ towards +x) of loaded elements."""
+    c = math.cos(theta)
+    s = math.sin(theta)
+    hi = -1e300
+    lo = 1e300
+    found = False
+    for i in range(mid.shape[0]):
+        rx = c * mid[i, 0] + s * mid[i, 1]
+        rz = -s * mid[i, 0] + c * mid[i, 1]
+        if surface - (z + rz) <= 0.0:
+            continue
+        nx = c * nrm[i, 0] + s * nrm[i, 1]
+        nz = -s * nrm[i, 0] + c * nrm[i, 1]
+        if nx * (vx + omega * rz) + nz * (vz - omega * rx) <= 0.0:
+            continue
+        a = math.atan2(rx, -rz)
+        hi = max(hi, a)
+        lo = min(lo, a)
+        found = True
+    return hi, lo, found
