@@ -1,4 +1,4 @@
-"""Steady wheel solves: one (W, s) point and the whole demo sweep (4 media x 4 loads x 15 slips x 2 models)."""
+"""Steady wheel solves: one (W, s) point and the whole demo sweep (4 media x 4 loads x 15 slips)."""
 
 from __future__ import annotations
 
@@ -23,8 +23,10 @@ def main() -> None:
         wheel_steady(wheel, ms, 130.0, 0.1 + 0.5 * (n % 7) / 7)
         n += 1
     per_point = (time.perf_counter() - t0) / n
-    print(f"RFT steady point, circular wheel, {wheel.discretize().element_count} elements: "
-          f"{per_point * 1e3:.3f} ms")
+    print(
+        f"RFT steady point, circular wheel, {wheel.discretize().element_count} elements: "
+        f"{per_point * 1e3:.3f} ms"
+    )
     media = [materials.get(m) for m in ("MS", "MMS", "LPS", "CPS")]
     loads = [80.0, 130.0, 150.0, 190.0]
     slips = list(np.linspace(-0.7, 0.7, 15))

@@ -164,10 +164,16 @@ def flapped_wheel_performance(
     from .rft import RFTModel
 
     check_positive("load", load)
-    wheel = WheelFlapped(hub_radius=hub_radius, width=width, flap_count=int(flap_count),
-                         flap_length=flap_length, flap_angle=flap_angle)
-    res = wheel_self_propelled(wheel, RFTModel(material, element_size=element_size), load,
-                               omega=omega, phase_count=phase_count)
+    wheel = WheelFlapped(
+        hub_radius=hub_radius,
+        width=width,
+        flap_count=int(flap_count),
+        flap_length=flap_length,
+        flap_angle=flap_angle,
+    )
+    res = wheel_self_propelled(
+        wheel, RFTModel(material, element_size=element_size), load, omega=omega, phase_count=phase_count
+    )
     velocity = res.forward_velocity_m_s
     if velocity <= 0:
         raise SolverError("the wheel does not move forward")
@@ -206,9 +212,15 @@ def optimize_flapped_wheel(
 
     def objective(p: dict[str, float]) -> float:
         perf = flapped_wheel_performance(
-            material, hub_radius=hub_radius, width=width, flap_count=int(p["flap_count"]),
-            flap_length=p["flap_length_ratio"] * hub_radius, flap_angle=p["flap_angle"], load=load,
-            phase_count=phase_count, element_size=element_size,
+            material,
+            hub_radius=hub_radius,
+            width=width,
+            flap_count=int(p["flap_count"]),
+            flap_length=p["flap_length_ratio"] * hub_radius,
+            flap_angle=p["flap_angle"],
+            load=load,
+            phase_count=phase_count,
+            element_size=element_size,
         )
         return perf[key]
 
@@ -217,5 +229,11 @@ def optimize_flapped_wheel(
         Bound("flap_length_ratio", *flap_length_ratio),
         Bound("flap_angle", *flap_angle),
     ]
-    return optimize(objective, bounds, maximize=(metric == "velocity"), seed=seed,
-                    max_iterations=max_iterations, population=population)
+    return optimize(
+        objective,
+        bounds,
+        maximize=(metric == "velocity"),
+        seed=seed,
+        max_iterations=max_iterations,
+        population=population,
+    )

@@ -41,7 +41,9 @@ def map_items(
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:
         raise InputError(
-            "scheduler", scheduler, "'serial' unless dask is installed",
+            "scheduler",
+            scheduler,
+            "'serial' unless dask is installed",
             "pip install 'terradyn[cluster]'",
         ) from None
     if workers is not None and not (isinstance(workers, int) and workers >= 1):
@@ -50,8 +52,12 @@ def map_items(
     if scheduler == "local":
         n = workers or max(1, min(len(items), os.cpu_count() or 1))
         cluster = LocalCluster(
-            n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
-            dashboard_address=None, silence_logs=40,
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=None,
+            silence_logs=40,
         )
         client = Client(cluster)
     else:

@@ -133,7 +133,9 @@ def scale_test(test: WheelTest, factors: ScaleFactors) -> WheelTest:
     mat = test.material
     if mat.bekker is not None and mat.bekker.cohesion > 0 and (factors.gravity != 1 or factors.density != 1):
         raise InputError(
-            "material", mat.name, "a cohesionless medium for a gravity or density change",
+            "material",
+            mat.name,
+            "a cohesionless medium for a gravity or density change",
             "cohesion does not scale with rho g",
         )
     new_mat = mat
@@ -172,8 +174,12 @@ def dimensionless_groups(
     the wheels of Agarwal et al. 2021); ``omega_hat`` = omega sqrt(L / g); ``velocity_hat`` =
     V / sqrt(g L); ``inertia_hat`` = I / (M L^2); ``power_hat`` = P / (M g^(3/2) L^(1/2)).
     """
-    for name, v in (("length", length), ("mass", mass), ("gravity", gravity),
-                    ("critical_density", critical_density)):
+    for name, v in (
+        ("length", length),
+        ("mass", mass),
+        ("gravity", gravity),
+        ("critical_density", critical_density),
+    ):
         check_positive(name, v)
     depth = width if width is not None else length
     if width is not None:

@@ -20,8 +20,9 @@ def test_materials_list_and_show(run_cli):
 
 
 def test_rft_alpha_generic(run_cli):
-    code, out, _ = run_cli("rft", "alpha", "--material", "generic", "--beta", "0", "--gamma", "90",
-                           "--format", "json")
+    code, out, _ = run_cli(
+        "rft", "alpha", "--material", "generic", "--beta", "0", "--gamma", "90", "--format", "json"
+    )
     assert code == 0
     rec = json.loads(out)
     assert rec["alpha_z_N_per_m3"] == pytest.approx(1.0e6)
@@ -30,8 +31,9 @@ def test_rft_alpha_generic(run_cli):
 
 def test_rft_alpha_grid_writes_csv_and_plot(run_cli, tmp_path):
     csv, png = tmp_path / "map.csv", tmp_path / "map.png"
-    code, _, err = run_cli("rft", "alpha", "--grid", "--step", "15", "--format", "csv", "--out",
-                           str(csv), "--plot", str(png))
+    code, _, err = run_cli(
+        "rft", "alpha", "--grid", "--step", "15", "--format", "csv", "--out", str(csv), "--plot", str(png)
+    )
     assert code == 0, err
     assert csv.read_text().startswith("beta_deg,gamma_deg,alpha_x_N_per_m3,alpha_z_N_per_m3")
     assert len(csv.read_text().splitlines()) == 1 + 13 * 13
@@ -39,9 +41,24 @@ def test_rft_alpha_grid_writes_csv_and_plot(run_cli, tmp_path):
 
 
 def test_intrude_plate_json(run_cli):
-    code, out, _ = run_cli("intrude", "plate", "--length", "0.05", "--width", "0.02", "--depth", "0.03",
-                           "--angle", "0", "--direction", "90", "--material", "generic", "--format",
-                           "json")
+    code, out, _ = run_cli(
+        "intrude",
+        "plate",
+        "--length",
+        "0.05",
+        "--width",
+        "0.02",
+        "--depth",
+        "0.03",
+        "--angle",
+        "0",
+        "--direction",
+        "90",
+        "--material",
+        "generic",
+        "--format",
+        "json",
+    )
     assert code == 0
     rec = json.loads(out)
     assert set(rec) == {"force_x_N", "force_z_N", "torque_y_Nm"}
@@ -50,8 +67,20 @@ def test_intrude_plate_json(run_cli):
 
 def test_intrude_sweep_csv(run_cli, tmp_path):
     out = tmp_path / "sweep.csv"
-    code, _, _ = run_cli("intrude", "plate", "--length", "0.05", "--depth", "0:0.1:11", "--format",
-                         "csv", "--out", str(out), "--plot", str(tmp_path / "f.png"))
+    code, _, _ = run_cli(
+        "intrude",
+        "plate",
+        "--length",
+        "0.05",
+        "--depth",
+        "0:0.1:11",
+        "--format",
+        "csv",
+        "--out",
+        str(out),
+        "--plot",
+        str(tmp_path / "f.png"),
+    )
     assert code == 0
     lines = out.read_text().splitlines()
     assert lines[0] == "depth_m,force_x_N,force_z_N,torque_y_Nm"
@@ -86,8 +115,16 @@ def test_bad_input_writes_no_partial_file(run_cli, tmp_path):
     assert code != 0
     assert not target.exists()
     assert list(tmp_path.iterdir()) == []
-    code, _, err = run_cli("intrude", "plate", "--length", "0.05", "--depth", "0.1", "--out",
-                           str(tmp_path / "missing" / "x.json"))
+    code, _, err = run_cli(
+        "intrude",
+        "plate",
+        "--length",
+        "0.05",
+        "--depth",
+        "0.1",
+        "--out",
+        str(tmp_path / "missing" / "x.json"),
+    )
     assert code != 0 and "--out" in err
 
 
@@ -107,8 +144,9 @@ def test_validate_passes(run_cli):
 
 
 def test_study_run_and_bad_study_file(run_cli, tmp_path):
-    code, out, err = run_cli("study", "run", "plate-depth", "--quick", "--out", str(tmp_path / "s"),
-                             "--format", "json")
+    code, out, err = run_cli(
+        "study", "run", "plate-depth", "--quick", "--out", str(tmp_path / "s"), "--format", "json"
+    )
     assert code == 0, err
     assert {r["material"] for r in json.loads(out)} >= {"MS", "generic"}
     assert (tmp_path / "s" / "plate_depth.png").exists()

@@ -19,8 +19,15 @@ def test_shipped_media_present_and_cited():
 
 @pytest.mark.parametrize(
     ("name", "zeta"),
-    [("generic", 1.0e6), ("MS", 2.02e6), ("MMS", 3.05e6), ("LPS", 0.35e6), ("CPS", 0.55e6),
-     ("poppy-lp", 0.254e6), ("poppy-cp", 0.464e6)],
+    [
+        ("generic", 1.0e6),
+        ("MS", 2.02e6),
+        ("MMS", 3.05e6),
+        ("LPS", 0.35e6),
+        ("CPS", 0.55e6),
+        ("poppy-lp", 0.254e6),
+        ("poppy-cp", 0.464e6),
+    ],
 )
 def test_zeta_values(name, zeta):
     assert materials.get(name).zeta == pytest.approx(zeta, rel=1e-12)

@@ -23,8 +23,11 @@ def _synthetic(mat, angles, directions, depths, noise, seed=0):
             rows["force_x_N"] += list(fx + rng.normal(0, scale, fx.size))
             rows["angle_deg"] += [a] * len(depths)
             rows["direction_deg"] += [g] * len(depths)
-    return PlateData(*(np.array(rows[k]) for k in ("depth_m", "force_z_N", "force_x_N")),
-                     np.array(rows["angle_deg"]), np.array(rows["direction_deg"]))
+    return PlateData(
+        *(np.array(rows[k]) for k in ("depth_m", "force_z_N", "force_x_N")),
+        np.array(rows["angle_deg"]),
+        np.array(rows["direction_deg"]),
+    )
 
 
 def test_recovers_zeta_from_noisy_data():
@@ -51,8 +54,10 @@ def test_csv_roundtrip_and_toml(tmp_path):
     ms = materials.get("MS")
     data = _synthetic(ms, [0.0], [90.0], np.linspace(0.02, 0.1, 5), noise=0.0)
     csv = tmp_path / "plate.csv"
-    csv.write_text("depth_m,force_z_N\n" + "\n".join(
-        f"{d},{f}" for d, f in zip(data.depth_m, data.force_z_N, strict=True)))
+    csv.write_text(
+        "depth_m,force_z_N\n"
+        + "\n".join(f"{d},{f}" for d, f in zip(data.depth_m, data.force_z_N, strict=True))
+    )
     fit = fit_rft(read_plate_force_csv(csv), plate_length=0.0381, plate_width=0.0254)
     assert fit.zeta == pytest.approx(ms.zeta, rel=1e-9)
     out = write_rft_material_toml(tmp_path / "fit.toml", "my-sand", fit, source="plate.csv")

@@ -24,8 +24,9 @@ def test_horizontal_plate_down_is_zeta_area_depth():
 def test_linear_in_depth_for_submerged_body():
     # Any fully submerged body translating: F(d) is affine in d, and for a horizontal plate linear.
     plate = Plate(0.04, 0.01)
-    f = [rft_wrench(plate, MS, Pose2D(0, -d, 0.4), Twist2D(0.3, -0.2, 0)).as_array()
-         for d in (0.05, 0.1, 0.15)]
+    f = [
+        rft_wrench(plate, MS, Pose2D(0, -d, 0.4), Twist2D(0.3, -0.2, 0)).as_array() for d in (0.05, 0.1, 0.15)
+    ]
     np.testing.assert_allclose(f[2] - f[1], f[1] - f[0], rtol=1e-10, atol=1e-9)
 
 
@@ -33,8 +34,9 @@ def test_linear_in_width_and_zeta():
     w1 = rft_wrench(WheelCircular(0.1, 0.05), MS, Pose2D(0, 0.08, 0), Twist2D(0.1, 0, 1.5))
     w2 = rft_wrench(WheelCircular(0.1, 0.15), MS, Pose2D(0, 0.08, 0), Twist2D(0.1, 0, 1.5))
     np.testing.assert_allclose(w2.as_array(), 3 * w1.as_array(), rtol=1e-12)
-    w3 = rft_wrench(WheelCircular(0.1, 0.05), MS.with_zeta(2 * MS.zeta), Pose2D(0, 0.08, 0),
-                    Twist2D(0.1, 0, 1.5))
+    w3 = rft_wrench(
+        WheelCircular(0.1, 0.05), MS.with_zeta(2 * MS.zeta), Pose2D(0, 0.08, 0), Twist2D(0.1, 0, 1.5)
+    )
     np.testing.assert_allclose(w3.as_array(), 2 * w1.as_array(), rtol=1e-12)
 
 
@@ -95,8 +97,9 @@ def test_mirror_symmetry_of_bodies():
     plate = Plate(0.05, 0.02)
     for t, g in [(0.3, 1.0), (-0.7, 0.2), (1.2, 2.5)]:
         a = rft_wrench(plate, MS, Pose2D(0, -0.05, t), Twist2D(math.cos(g), -math.sin(g), 0))
-        b = rft_wrench(plate, MS, Pose2D(0, -0.05, -t),
-                       Twist2D(math.cos(math.pi - g), -math.sin(math.pi - g), 0))
+        b = rft_wrench(
+            plate, MS, Pose2D(0, -0.05, -t), Twist2D(math.cos(math.pi - g), -math.sin(math.pi - g), 0)
+        )
         assert b.fx == pytest.approx(-a.fx, rel=1e-9, abs=1e-9)
         assert b.fz == pytest.approx(a.fz, rel=1e-9, abs=1e-9)
         assert b.torque_y == pytest.approx(-a.torque_y, rel=1e-9, abs=1e-12)

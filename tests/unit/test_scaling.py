@@ -16,8 +16,14 @@ def test_scale_body_scales_lengths_only():
     assert p.length == pytest.approx(0.15) and p.thickness == pytest.approx(0.003)
 
 
-@pytest.mark.parametrize("factors", [ScaleFactors(length=2.0), ScaleFactors(gravity=1.62 / 9.81),
-                                     ScaleFactors(length=0.5, gravity=3.71 / 9.81, density=1.3)])
+@pytest.mark.parametrize(
+    "factors",
+    [
+        ScaleFactors(length=2.0),
+        ScaleFactors(gravity=1.62 / 9.81),
+        ScaleFactors(length=0.5, gravity=3.71 / 9.81, density=1.3),
+    ],
+)
 def test_scaled_steady_states_are_identical_in_dimensionless_form(factors):
     base = WheelTest(WheelCircular(0.1, 0.05), CPS, mass=3.0, omega=2.0)
     new = scale_test(base, factors)
@@ -34,12 +40,20 @@ def test_scaled_steady_states_are_identical_in_dimensionless_form(factors):
 
 
 def test_groups_and_errors():
-    g = dimensionless_groups(length=0.212, mass=6 * 638 * 0.212**2 * 0.05, gravity=9.81,
-                             critical_density=638, width=0.05, omega=6.8, velocity=1.44)
+    g = dimensionless_groups(
+        length=0.212,
+        mass=6 * 638 * 0.212**2 * 0.05,
+        gravity=9.81,
+        critical_density=638,
+        width=0.05,
+        omega=6.8,
+        velocity=1.44,
+    )
     assert g["mass_ratio"] == pytest.approx(6.0)
     assert g["omega_hat"] == pytest.approx(6.8 * (0.212 / 9.81) ** 0.5)
     with pytest.raises(InputError, match="cohesion"):
-        scale_test(WheelTest(WheelCircular(0.1, 0.05), materials.get("MS"), 3.0, 1.0),
-                   ScaleFactors(gravity=0.5))
-    with pytest.raises(InputError, match="scale.length"):
+        scale_test(
+            WheelTest(WheelCircular(0.1, 0.05), materials.get("MS"), 3.0, 1.0), ScaleFactors(gravity=0.5)
+        )
+    with pytest.raises(InputError, match=r"scale\.length"):
         ScaleFactors(length=0)

@@ -88,9 +88,7 @@ def build_body(kind: BodyKind, width: float, **flags: Any) -> geometry.Body:
     for key in given:
         if key not in accepted:
             allowed = ", ".join(f"--{a.replace('_', '-')}" for a in accepted) or "none"
-            raise InputError(
-                f"--{key.replace('_', '-')}", given[key], f"a flag of {kind.value} ({allowed})"
-            )
+            raise InputError(f"--{key.replace('_', '-')}", given[key], f"a flag of {kind.value} ({allowed})")
     kwargs: dict[str, Any] = {}
     for flag, keyword in accepted.items():
         if flag in given:

@@ -32,8 +32,7 @@ def calibrate_rft(
 
     if material_out is not None and material_out.suffix != ".toml":
         raise InputError("--material-out", str(material_out), "a path ending in .toml")
-    fit = fit_rft(read_plate_force_csv(data), plate_length=plate_length, plate_width=plate_width,
-                  full=full)
+    fit = fit_rft(read_plate_force_csv(data), plate_length=plate_length, plate_width=plate_width, full=full)
     rec = {
         "zeta_N_per_m3": fit.zeta,
         "r_squared": fit.r_squared,

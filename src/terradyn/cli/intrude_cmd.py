@@ -49,18 +49,28 @@ def intrude(
     """RFT force [N] and torque [N m] on BODY moving through the medium (quasi-static)."""
     depths = parse_float_list("--depth", depth)
     shape = build_body(
-        body, width, length=length, thickness=thickness, radius=radius, side=side, base=base,
-        height=height, tip_offset=tip_offset, grouser_count=grouser_count,
-        grouser_height=grouser_height, grouser_thickness=grouser_thickness, hub_radius=hub_radius,
-        flap_count=flap_count, flap_length=flap_length, flap_angle=flap_angle,
+        body,
+        width,
+        length=length,
+        thickness=thickness,
+        radius=radius,
+        side=side,
+        base=base,
+        height=height,
+        tip_offset=tip_offset,
+        grouser_count=grouser_count,
+        grouser_height=grouser_height,
+        grouser_thickness=grouser_thickness,
+        hub_radius=hub_radius,
+        flap_count=flap_count,
+        flap_length=flap_length,
+        flap_angle=flap_angle,
         points_file=points_file,
     )
     mat = materials.get(material)
     theta = math.radians(check_finite("--angle", angle))
     direc = math.radians(check_finite("--direction", direction))
-    table = intrusion_forces(
-        shape, mat, depths, angle=theta, direction=direc, element_size=element_size
-    )
+    table = intrusion_forces(shape, mat, depths, angle=theta, direction=direc, element_size=element_size)
     if plot is not None:
         _plot(shape, mat, table, depths, theta, direc, element_size, plot)
     rows = table.records()
@@ -87,7 +97,10 @@ def _plot(shape, mat, table, depths, theta, direc, element_size, path):
     else:
         pose = Pose2D(0.0, -depths[0], theta)
         el = rft_element_forces(
-            shape, mat, pose, Twist2D(math.cos(direc), -math.sin(direc), 0.0),
+            shape,
+            mat,
+            pose,
+            Twist2D(math.cos(direc), -math.sin(direc), 0.0),
             element_size=element_size,
         )
         outline = [to_world(np.asarray(p), pose) for p in shape.outline()]

@@ -22,8 +22,9 @@ def list_(
     out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
 ) -> None:
     """List the built-in studies."""
-    from ..studies.registry import STUDIES
+    from ..studies.registry import STUDIES, _load_plugins
 
+    _load_plugins()
     emit([{"study": k, "about": v[2]} for k, v in sorted(STUDIES.items())], fmt, out)
 
 

@@ -41,7 +41,6 @@ _SHAPE_TO_BODY = {
 }
 
 
-
 class WongReeceOptions:
     c1 = typer.Option(0.43, "--c1", help="Wong-Reece theta_m coefficient c1 [-].")
     c2 = typer.Option(0.32, "--c2", help="Wong-Reece theta_m coefficient c2 [-].")
@@ -99,11 +98,13 @@ def _plot_steady(body: Body, mat: Material, res: Any, path: Path, element_size: 
     from ..rft import rft_element_forces
 
     pose = Pose2D(0.0, res.axle_height_m, 0.0)
-    el = rft_element_forces(body, mat, pose, Twist2D(res.forward_velocity_m_s, 0.0, res.omega_rad_s),
-                            element_size=element_size)
+    el = rft_element_forces(
+        body, mat, pose, Twist2D(res.forward_velocity_m_s, 0.0, res.omega_rad_s), element_size=element_size
+    )
     outline = [to_world(np.asarray(p), pose) for p in body.outline()]
-    ax = plot_body_tractions(outline, el.positions, el.forces,
-                             title=f"{mat.name}, W = {res.load_N:g} N, s = {res.slip:.3g} (RFT)")
+    ax = plot_body_tractions(
+        outline, el.positions, el.forces, title=f"{mat.name}, W = {res.load_N:g} N, s = {res.slip:.3g} (RFT)"
+    )
     save_figure(ax.figure, path)
 
 
@@ -179,8 +180,14 @@ def self_propelled(
 
     body = wheel_body(shape, width, _shape_flags(shape, locals()))
     factory = model_factory(model, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
-    res = wheel_self_propelled(body, factory(materials.get(material)), load,
-                               drawbar_load=drawbar_load, omega=omega, phase_count=phases)
+    res = wheel_self_propelled(
+        body,
+        factory(materials.get(material)),
+        load,
+        drawbar_load=drawbar_load,
+        omega=omega,
+        phase_count=phases,
+    )
     emit(_steady_record(res), fmt, out)
 
 
@@ -208,8 +215,9 @@ def sweep(
     c1: float = WongReeceOptions.c1,
     c2: float = WongReeceOptions.c2,
     exit_angle: float = WongReeceOptions.exit_angle,
-    scheduler: str = typer.Option("serial", "--scheduler",
-                                  help="serial, local (Dask processes) or a Dask scheduler address."),
+    scheduler: str = typer.Option(
+        "serial", "--scheduler", help="serial, local (Dask processes) or a Dask scheduler address."
+    ),
     workers: int | None = typer.Option(None, "--workers", help="Local Dask worker processes."),
     fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
     out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
@@ -224,8 +232,7 @@ def sweep(
         raise InputError("--material", material, "one or more media, comma separated")
     names = [m.strip() for m in model.split(",") if m.strip()]
     factories = {
-        n: model_factory(n, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
-        for n in names
+        n: model_factory(n, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size) for n in names
     }
     if not factories:
         raise InputError("--model", model, f"one or more of {list(MODEL_NAMES)}")
@@ -233,9 +240,18 @@ def sweep(
     slips = parse_float_list("--slip", slip)
     total = len(media) * len(factories) * len(loads) * len(slips)
     with progress(total, "wheel sweep") as advance:
-        table = force_slip_sweep(body, media, factories, loads, slips, omega=omega,
-                                 phase_count=phases, on_point=advance, scheduler=scheduler,
-                                 workers=workers)
+        table = force_slip_sweep(
+            body,
+            media,
+            factories,
+            loads,
+            slips,
+            omega=omega,
+            phase_count=phases,
+            on_point=advance,
+            scheduler=scheduler,
+            workers=workers,
+        )
     if plot is not None:
         plot_sweep(table.columns, [m.name for m in media], plot)
     failures = table.metadata["failures"]
@@ -255,8 +271,18 @@ def plot_sweep(columns: dict[str, Any], media: list[str], path: Path) -> None:
 
 
 def _shape_flags(shape: WheelShape, values: dict[str, Any]) -> dict[str, Any]:
-    keys = ("radius", "thickness", "grouser_count", "grouser_height", "grouser_thickness",
-            "hub_radius", "flap_count", "flap_length", "flap_angle", "points_file")
+    keys = (
+        "radius",
+        "thickness",
+        "grouser_count",
+        "grouser_height",
+        "grouser_thickness",
+        "hub_radius",
+        "flap_count",
+        "flap_length",
+        "flap_angle",
+        "points_file",
+    )
     flags = {k: values[k] for k in keys}
     if shape in (WheelShape.flapped, WheelShape.polygon):
         flags["radius"] = None  # the default --radius belongs to circular and grousered wheels

@@ -10,7 +10,6 @@ balances W, and the minimum and maximum over the period are reported too.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
@@ -123,8 +122,14 @@ class _ForceFunction:
         if isinstance(model, RFTModel):
             el = body.discretize(model.element_size)
             rft = model.material.require_rft()
-            self._rft = (el.midpoints, el.normals, el.lengths, el.width, rft.coefficients.as_array(),
-                         rft.scale)
+            self._rft = (
+                el.midpoints,
+                el.normals,
+                el.lengths,
+                el.width,
+                rft.coefficients.as_array(),
+                rft.scale,
+            )
 
     def phases(self, z: float) -> np.ndarray:
         """Wrenches (P, 3) over the phases at axle height ``z`` [m] (torque about the axle)."""
@@ -133,8 +138,9 @@ class _ForceFunction:
             from ..rft._kernels import rft_wrench_phases_kernel
 
             mid, nrm, lng, width, coeffs, scale = self._rft
-            return rft_wrench_phases_kernel(mid, nrm, lng, width, 0.0, z, self.thetas, tw.vx, tw.vz,
-                                            tw.omega, coeffs, scale, self.surface)
+            return rft_wrench_phases_kernel(
+                mid, nrm, lng, width, 0.0, z, self.thetas, tw.vx, tw.vz, tw.omega, coeffs, scale, self.surface
+            )
         return np.array(
             [self.model.wrench(self.body, Pose2D(0.0, z, th), tw).as_array() for th in self.thetas]
         )
@@ -146,9 +152,20 @@ class _ForceFunction:
             from ..rft._kernels import rft_vertical_mean_kernel
 
             mid, nrm, lng, width, coeffs, scale = self._rft
-            return rft_vertical_mean_kernel(mid, nrm, lng, width, np.ascontiguousarray(heights, dtype=float),
-                                            self.thetas, tw.vx, tw.vz, tw.omega, coeffs, scale,
-                                            self.surface)
+            return rft_vertical_mean_kernel(
+                mid,
+                nrm,
+                lng,
+                width,
+                np.ascontiguousarray(heights, dtype=float),
+                self.thetas,
+                tw.vx,
+                tw.vz,
+                tw.omega,
+                coeffs,
+                scale,
+                self.surface,
+            )
         return np.array([self.phases(float(z))[:, 1].mean() for z in heights])
 
     def vertical(self, z: float) -> float:
@@ -260,16 +277,21 @@ def _zero_omega(omega: float) -> float:
     raise InputError("omega", omega, "a spin rate > 0 [rad/s]", "slip is undefined when omega = 0")
 
 
-def _contact_angles(
-    model: TerrainModel, body: Body, pose: Pose2D, twist: Twist2D
-) -> tuple[float, float]:
+def _contact_angles(model: TerrainModel, body: Body, pose: Pose2D, twist: Twist2D) -> tuple[float, float]:
     """Front (entry) and rear (exit) angles [rad] of the loaded contact, from the downward vertical."""
     if isinstance(model, RFTModel):
         from ..rft._kernels import rft_contact_angles_kernel
 
         el = body.discretize(model.element_size)
         hi, lo, found = rft_contact_angles_kernel(
-            el.midpoints, el.normals, pose.x, pose.z, pose.theta, twist.vx, twist.vz, twist.omega,
+            el.midpoints,
+            el.normals,
+            pose.x,
+            pose.z,
+            pose.theta,
+            twist.vx,
+            twist.vz,
+            twist.omega,
             model.surface_level,
         )
         return (float(hi), float(lo)) if found else (0.0, 0.0)

@@ -19,8 +19,14 @@ from .steady import wheel_steady
 __all__ = ["force_slip_sweep"]
 
 ModelFactory = Callable[[Material], TerrainModel]
-_VALUES = ("sinkage_m", "drawbar_pull_N", "drive_torque_Nm", "power_W", "tractive_efficiency",
-           "entry_angle_rad")
+_VALUES = (
+    "sinkage_m",
+    "drawbar_pull_N",
+    "drive_torque_Nm",
+    "power_W",
+    "tractive_efficiency",
+    "entry_angle_rad",
+)
 
 
 @dataclass(frozen=True)
@@ -42,10 +48,16 @@ def _run_task(task: _Task) -> tuple[list[tuple[Any, ...]], list[str]]:
     for load in task.loads:
         for slip in task.slips:
             try:
-                r = wheel_steady(task.body, model, load, slip, omega=task.omega,
-                                 phase_count=task.phase_count)
-                vals = (True, r.sinkage_m, r.drawbar_pull_N, r.drive_torque_Nm, r.power_W,
-                        r.tractive_efficiency, r.entry_angle_rad)
+                r = wheel_steady(task.body, model, load, slip, omega=task.omega, phase_count=task.phase_count)
+                vals = (
+                    True,
+                    r.sinkage_m,
+                    r.drawbar_pull_N,
+                    r.drive_torque_Nm,
+                    r.power_W,
+                    r.tractive_efficiency,
+                    r.entry_angle_rad,
+                )
             except SolverError as exc:
                 failures.append(f"{task.material.name}/{task.model_name}/W={load:g}/s={slip:g}: {exc}")
                 vals = (False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
@@ -75,8 +87,16 @@ def force_slip_sweep(
     ``metadata["failures"]``.
     """
     tasks = [
-        _Task(body, mat, name, factory, tuple(float(v) for v in loads), tuple(float(v) for v in slips),
-              omega, phase_count)
+        _Task(
+            body,
+            mat,
+            name,
+            factory,
+            tuple(float(v) for v in loads),
+            tuple(float(v) for v in slips),
+            omega,
+            phase_count,
+        )
         for mat in media
         for name, factory in models.items()
     ]

@@ -135,9 +135,7 @@ def from_dict(data: dict[str, Any], *, source: str = "<dict>") -> Material:
                 else mu_s
             ),
             inertial_number_0=(
-                _number(c, "inertial_number_0", "continuum", where)
-                if "inertial_number_0" in c
-                else 0.278
+                _number(c, "inertial_number_0", "continuum", where) if "inertial_number_0" in c else 0.278
             ),
             grain_diameter=(
                 _number(c, "grain_diameter_m", "continuum", where) if "grain_diameter_m" in c else 1e-3

@@ -42,8 +42,15 @@ def plot_force_slip(columns: dict[str, np.ndarray], *, material: str, axes: Any 
                     continue
                 order = np.argsort(columns["slip"][m])
                 y = columns[key][m][order] * (1e3 if key == "sinkage_m" else 1.0)
-                ax.plot(columns["slip"][m][order], y, _STYLES.get(model, "-."), color=colour,
-                        marker="o", ms=2.5, label=f"{model}, W = {load:g} N")
+                ax.plot(
+                    columns["slip"][m][order],
+                    y,
+                    _STYLES.get(model, "-."),
+                    color=colour,
+                    marker="o",
+                    ms=2.5,
+                    label=f"{model}, W = {load:g} N",
+                )
         ax.set_xlabel("slip [-]")
         ax.set_ylabel(label)
         ax.axhline(0.0, color="0.7", lw=0.8)

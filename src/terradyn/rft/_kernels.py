@@ -164,8 +164,21 @@ def rft_vertical_mean_kernel(
         acc = 0.0
         for k in range(thetas.shape[0]):
             _, fz, _ = rft_wrench_kernel(
-                mid, nrm, lengths, width, 0.0, heights[j], thetas[k], vx, vz, omega, coeffs, scale,
-                surface, 0.0, heights[j],
+                mid,
+                nrm,
+                lengths,
+                width,
+                0.0,
+                heights[j],
+                thetas[k],
+                vx,
+                vz,
+                omega,
+                coeffs,
+                scale,
+                surface,
+                0.0,
+                heights[j],
             )
             acc += fz
         out[j] = acc / thetas.shape[0]

@@ -149,7 +149,9 @@ def fit_rft(
         pairs = {(round(t, 6), round(g, 6)) for t, g in zip(data.angle_deg, data.direction_deg, strict=True)}
         if len(pairs) < 5:
             raise InputError(
-                "full", True, "data at 5 or more distinct (angle, direction) pairs",
+                "full",
+                True,
+                "data at 5 or more distinct (angle, direction) pairs",
                 f"found {len(pairs)}; fit zeta only",
             )
         coef, *_ = np.linalg.lstsq(a, b, rcond=None)
@@ -174,8 +176,9 @@ def fit_rft(
     return RFTFit(rft, full, r2, float(np.sqrt(np.mean(resid**2))), len(b))
 
 
-def write_rft_material_toml(path: str | Path, name: str, fit: RFTFit, *, source: str = "",
-                            base: Material | None = None) -> Path:
+def write_rft_material_toml(
+    path: str | Path, name: str, fit: RFTFit, *, source: str = "", base: Material | None = None
+) -> Path:
     """Write a material TOML with the fitted RFT parameters (atomically) and return its path."""
     from ..cli._common import atomic_write_text
 

@@ -157,9 +157,7 @@ def rft_element_forces(
     leading = np.einsum("ij,ij->i", normals, velocities) > 0
     active = (depth > 0) & leading
     beta, gamma = rft_angles(normals, velocities)
-    ax, az = li2013_alpha_from_directions(
-        normals, velocities, rft.coefficients.as_array(), rft.scale
-    )
+    ax, az = li2013_alpha_from_directions(normals, velocities, rft.coefficients.as_array(), rft.scale)
     ax = np.where(active, ax, 0.0)
     az = np.where(active, az, 0.0)
     d = np.where(active, depth, 0.0)
@@ -173,8 +171,20 @@ def rft_element_forces(
         float(np.sum(r[:, 1] * forces[:, 0] - r[:, 0] * forces[:, 1])),
     )
     return RFTElementForces(
-        positions, normals, velocities, depth, beta, gamma, active, ax, az, tractions, forces,
-        areas, wrench, point,
+        positions,
+        normals,
+        velocities,
+        depth,
+        beta,
+        gamma,
+        active,
+        ax,
+        az,
+        tractions,
+        forces,
+        areas,
+        wrench,
+        point,
     )
 
 
@@ -200,7 +210,12 @@ def rft_wrench(
         raise InputError("backend", backend, f"one of {[b.value for b in Backend]}") from None
     if backend is Backend.NUMPY:
         return rft_element_forces(
-            body, material, pose, twist, surface_level=surface_level, about=about,
+            body,
+            material,
+            pose,
+            twist,
+            surface_level=surface_level,
+            about=about,
             element_size=element_size,
         ).wrench
     from ._kernels import rft_wrench_kernel
@@ -209,10 +224,21 @@ def rft_wrench(
     rft = _rft_params(material)
     point = _about(pose, about)
     fx, fz, ty = rft_wrench_kernel(
-        elems.midpoints, elems.normals, elems.lengths, elems.width,
-        pose.x, pose.z, pose.theta, twist.vx, twist.vz, twist.omega,
-        rft.coefficients.as_array(), rft.scale, check_finite("surface_level", surface_level),
-        point[0], point[1],
+        elems.midpoints,
+        elems.normals,
+        elems.lengths,
+        elems.width,
+        pose.x,
+        pose.z,
+        pose.theta,
+        twist.vx,
+        twist.vz,
+        twist.omega,
+        rft.coefficients.as_array(),
+        rft.scale,
+        check_finite("surface_level", surface_level),
+        point[0],
+        point[1],
     )
     return Wrench2D(fx, fz, ty)
 
@@ -247,8 +273,16 @@ def rft_wrench_many(
     elems = as_elements(body, element_size)
     rft = _rft_params(material)
     return rft_wrench_many_kernel(
-        elems.midpoints, elems.normals, elems.lengths, elems.width, p, t,
-        rft.coefficients.as_array(), rft.scale, check_finite("surface_level", surface_level), a,
+        elems.midpoints,
+        elems.normals,
+        elems.lengths,
+        elems.width,
+        p,
+        t,
+        rft.coefficients.as_array(),
+        rft.scale,
+        check_finite("surface_level", surface_level),
+        a,
     )
 
 
@@ -284,6 +318,11 @@ class RFTModel:
         about: tuple[float, float] | None = None,
     ) -> Wrench2D:
         return rft_wrench(
-            body, self.material, pose, twist, surface_level=self.surface_level, about=about,
+            body,
+            self.material,
+            pose,
+            twist,
+            surface_level=self.surface_level,
+            about=about,
             element_size=self.element_size,
         )

@@ -65,10 +65,7 @@ def li2013_alpha(
         + c.Bm11 * np.sin(-2 * b + g)
     )
     alpha_x = (
-        c.C01 * np.cos(g)
-        + c.C11 * np.cos(2 * b + g)
-        + c.Cm11 * np.cos(-2 * b + g)
-        + c.D10 * np.sin(2 * b)
+        c.C01 * np.cos(g) + c.C11 * np.cos(2 * b + g) + c.Cm11 * np.cos(-2 * b + g) + c.D10 * np.sin(2 * b)
     )
     return scale * alpha_x, scale * alpha_z
 
@@ -81,9 +78,7 @@ def li2013_alpha_material(
     return li2013_alpha(beta, gamma, rft.coefficients, rft.scale)
 
 
-def rft_angles(
-    normals: ArrayLike, velocities: ArrayLike
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def rft_angles(normals: ArrayLike, velocities: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """RFT angles (beta, gamma) [rad] from outward normals and velocities, both shape (N, 2)."""
     n = np.asarray(normals, dtype=np.float64)
     v = np.asarray(velocities, dtype=np.float64)
@@ -113,8 +108,6 @@ def li2013_alpha_from_directions(
     sg = np.where(speed > 0, -vz / safe, 0.0)
     c2b = nz * nz - nx * nx
     s2b = -2.0 * nx * nz
-    alpha_z = (
-        a00 + a10 * c2b + b01 * sg + b11 * (s2b * cg + c2b * sg) + bm11 * (c2b * sg - s2b * cg)
-    )
+    alpha_z = a00 + a10 * c2b + b01 * sg + b11 * (s2b * cg + c2b * sg) + bm11 * (c2b * sg - s2b * cg)
     alpha_x = c01 * cg + c11 * (c2b * cg - s2b * sg) + cm11 * (c2b * cg + s2b * sg) + d10 * s2b
     return scale * alpha_x, scale * alpha_z

@@ -1,49 +1,56 @@
-"""The built-in default study run by ``make demo`` / ``terradyn demo``."""
+"""The built-in default study run by ``make demo`` / ``terradyn demo``.
+
+The headline result of the thesis as one command: the 0.26 m x 0.16 m rigid wheel of Agarwal et al.
+(2019) on MS, MMS, LPS and CPS at 80, 130, 150 and 190 N, slip -0.7 to 0.7, with RFT and Wong-Reece.
+"""
 
 from __future__ import annotations
 
 import sys
+import time
 from pathlib import Path
 
-import numpy as np
-
-from .. import materials
 from ..errors import InputError
-from ..geometry import Plate
 
 __all__ = ["run_demo"]
 
 
 def run_demo(out: Path) -> list[Path]:
-    """Plate intrusion in every shipped medium with RFT: table, plot and summary. Returns files."""
-    from ..cli._common import OutputFormat, format_output, save_figure
-    from ..plotting import plot_force_depth
-    from .intrusion import intrusion_forces
+    """Run the wheel force-slip study; write CSV and PNG files to ``out``; print a summary."""
+    from ..cli._common import OutputFormat, atomic_write_text, format_output, save_figure
+    from .registry import run_study
 
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a folder path")
+    t0 = time.perf_counter()
+    _, result = run_study("wheel-force-slip")
+    elapsed = time.perf_counter() - t0
     out.mkdir(parents=True, exist_ok=True)
-    plate = Plate(0.05, 0.02)
-    depths = np.linspace(0.0, 0.1, 21)
-    frames, summary = [], []
-    ax = None
-    for name in materials.available():
-        mat = materials.get(name)
-        table = intrusion_forces(plate, mat, depths)
-        df = table.to_dataframe()
-        df.insert(0, "material", name)
-        frames.append(df)
-        ax = plot_force_depth(depths, {name: table.columns["force_z_N"]}, ax=ax)
-        summary.append({"material": name, "force_z_at_0.1m_N": float(table.columns["force_z_N"][-1])})
-    import pandas as pd
-
-    from ..cli._common import atomic_write_text
-
-    files = [atomic_write_text(out / "plate_intrusion.csv", pd.concat(frames).to_csv(index=False))]
-    assert ax is not None
-    ax.set_title("RFT: 50 mm x 20 mm plate pushed straight down")
-    files.append(save_figure(ax.figure, out / "plate_intrusion.png"))
-    sys.stdout.write(format_output(summary, OutputFormat.table, title="terradyn demo"))
-    sys.stdout.write(f"wrote {', '.join(str(f) for f in files)}\n")
+    files = []
+    for name, table in result.tables.items():
+        files.append(atomic_write_text(out / f"{name}.csv", table.to_dataframe().to_csv(index=False)))
+        failures = table.metadata.get("failures", [])
+        if failures:
+            files.append(atomic_write_text(out / f"{name}_unsolved.txt", "\n".join(failures) + "\n"))
+    files.append(atomic_write_text(out / "summary.csv", _summary_csv(result.summary)))
+    for name, fig in result.figures.items():
+        files.append(save_figure(fig, out / f"{name}.png"))
+    sys.stdout.write(
+        format_output(
+            result.summary,
+            OutputFormat.table,
+            title="terradyn demo: rigid wheel, RFT vs Wong-Reece (slip 0.3)",
+        )
+    )
+    sys.stdout.write(f"computed in {elapsed:.2f} s; wrote {', '.join(str(f) for f in files)}\n")
     return files
+
+
+def _summary_csv(rows: list[dict[str, object]]) -> str:
+    from ..cli._common import OutputFormat, format_output
+
+    keys: list[str] = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    return format_output([{k: r.get(k, "") for k in keys} for r in rows], OutputFormat.csv)

@@ -61,8 +61,12 @@ def intrusion_forces(
     surface = check_finite("surface_level", surface_level)
     poses = np.column_stack((np.zeros_like(d), surface - d, np.full_like(d, angle)))
     w = rft_wrench_many(
-        body, material, poses, _direction_twist(direction, d.size),
-        surface_level=surface, element_size=element_size,
+        body,
+        material,
+        poses,
+        _direction_twist(direction, d.size),
+        surface_level=surface,
+        element_size=element_size,
     )
     return TableResult(
         {"depth_m": d, "force_x_N": w[:, 0], "force_z_N": w[:, 1], "torque_y_Nm": w[:, 2]},
@@ -150,8 +154,7 @@ def lift_drag(
         "cylinder": geometry.Cylinder(radius=size / 2, width=width),
         "square": geometry.Square(side=size, width=width),
         "half-cylinder-flat-up": geometry.HalfCylinder(radius=size / 2, width=width, flat_side="up"),
-        "half-cylinder-flat-down": geometry.HalfCylinder(radius=size / 2, width=width,
-                                                         flat_side="down"),
+        "half-cylinder-flat-down": geometry.HalfCylinder(radius=size / 2, width=width, flat_side="down"),
     }
     names, d_all, drag, lift = [], [], [], []
     for name, body in bodies.items():
@@ -191,10 +194,20 @@ def wedges_versus_plate(
 
     check_positive("depth", depth)
     plate = geometry.Plate(length=base, width=width)
-    plate_fz = float(intrusion_forces(plate, material, [depth], element_size=element_size)
-                     .columns["force_z_N"][0])
-    rows: dict[str, list] = {k: [] for k in ("height_m", "tip_offset_m", "tip_half_angle_rad",
-                                             "wedge_force_z_N", "plate_force_z_N", "ratio")}
+    plate_fz = float(
+        intrusion_forces(plate, material, [depth], element_size=element_size).columns["force_z_N"][0]
+    )
+    rows: dict[str, list] = {
+        k: []
+        for k in (
+            "height_m",
+            "tip_offset_m",
+            "tip_half_angle_rad",
+            "wedge_force_z_N",
+            "plate_force_z_N",
+            "ratio",
+        )
+    }
     for e in np.atleast_1d(np.asarray(tip_offsets, dtype=float)):
         for h in np.atleast_1d(np.asarray(heights, dtype=float)):
             wedge = geometry.Wedge(base=base, height=h, tip_offset=float(e), width=width)
@@ -207,8 +220,10 @@ def wedges_versus_plate(
             rows["wedge_force_z_N"].append(fz)
             rows["plate_force_z_N"].append(plate_fz)
             rows["ratio"].append(fz / plate_fz)
-    return TableResult({k: np.asarray(v) for k, v in rows.items()},
-                       {"model": "rft", "material": material.name, "depth_m": depth, "base_m": base})
+    return TableResult(
+        {k: np.asarray(v) for k, v in rows.items()},
+        {"model": "rft", "material": material.name, "depth_m": depth, "base_m": base},
+    )
 
 
 def superposition(
@@ -237,15 +252,21 @@ def superposition(
     for body, dx in ((first, -half), (second, half)):
         poses = np.array([[dx, -depth, 0.0]])
         tw = np.array([[math.cos(direction), -math.sin(direction), 0.0]])
-        out.append(rft_wrench_many(body, material, poses, tw, about=about_zero,
-                                   element_size=element_size)[0])
+        out.append(rft_wrench_many(body, material, poses, tw, about=about_zero, element_size=element_size)[0])
     out.append(out[0] + out[1])
     tw = np.array([[math.cos(direction), -math.sin(direction), 0.0]])
-    out.append(rft_wrench_many(comp, material, np.array([[0.0, -depth, 0.0]]), tw,
-                               about=about_zero, element_size=element_size)[0])
+    out.append(
+        rft_wrench_many(
+            comp, material, np.array([[0.0, -depth, 0.0]]), tw, about=about_zero, element_size=element_size
+        )[0]
+    )
     arr = np.array(out)
     return TableResult(
-        {"case": np.array(["first", "second", "sum", "composite"]), "force_x_N": arr[:, 0],
-         "force_z_N": arr[:, 1], "torque_y_Nm": arr[:, 2]},
+        {
+            "case": np.array(["first", "second", "sum", "composite"]),
+            "force_x_N": arr[:, 0],
+            "force_z_N": arr[:, 1],
+            "torque_y_Nm": arr[:, 2],
+        },
         {"model": "rft", "material": material.name, "separation_m": separation},
     )

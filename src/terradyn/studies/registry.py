@@ -85,13 +85,15 @@ def _plate_depth(p: PlateDepthParams) -> StudyOutput:
     out, ax = StudyOutput(), None
     for name in p.media:
         mat = materials.get(name)
-        t = intrusion_forces(plate, mat, depths, angle=math.radians(p.angle_deg),
-                             direction=math.radians(p.direction_deg))
+        t = intrusion_forces(
+            plate, mat, depths, angle=math.radians(p.angle_deg), direction=math.radians(p.direction_deg)
+        )
         out.tables[f"plate_depth_{mat.name}"] = t
         ax = plot_force_depth(depths, {f"{mat.name} F_z": t.columns["force_z_N"]}, ax=ax)
         slope = np.polyfit(depths, t.columns["force_z_N"], 1)[0]
-        out.summary.append({"material": mat.name, "dFz_ddepth_N_per_m": float(slope),
-                            "zeta_N_per_m3": mat.zeta})
+        out.summary.append(
+            {"material": mat.name, "dFz_ddepth_N_per_m": float(slope), "zeta_N_per_m3": mat.zeta}
+        )
     assert ax is not None
     ax.set_title(f"RFT plate {p.length_m * 1e3:g} x {p.width_m * 1e3:g} mm")
     out.figures["plate_depth"] = ax.figure
@@ -119,8 +121,13 @@ def _alpha_map(p: AlphaMapParams) -> StudyOutput:
         ax.set_xlabel("plate angle [deg]")
         ax.set_ylabel("direction of motion [deg below +x]")
     out = StudyOutput({"alpha_map": t}, {"alpha_map": fig})
-    out.summary.append({"material": mat.name, "points": len(t),
-                        "alpha_z_max_N_per_m3": float(t.columns["alpha_z_N_per_m3"].max())})
+    out.summary.append(
+        {
+            "material": mat.name,
+            "points": len(t),
+            "alpha_z_max_N_per_m3": float(t.columns["alpha_z_N_per_m3"].max()),
+        }
+    )
     return out
 
 
@@ -138,8 +145,13 @@ def _lift_drag(p: LiftDragParams) -> StudyOutput:
         m = t.columns["body"] == name
         axes[0].plot(t.columns["depth_m"][m] * 1e3, t.columns["drag_N"][m], marker="o", ms=3, label=name)
         axes[1].plot(t.columns["depth_m"][m] * 1e3, t.columns["lift_N"][m], marker="o", ms=3, label=name)
-        out.summary.append({"body": name, "drag_at_max_depth_N": float(t.columns["drag_N"][m][-1]),
-                            "lift_at_max_depth_N": float(t.columns["lift_N"][m][-1])})
+        out.summary.append(
+            {
+                "body": name,
+                "drag_at_max_depth_N": float(t.columns["drag_N"][m][-1]),
+                "lift_at_max_depth_N": float(t.columns["lift_N"][m][-1]),
+            }
+        )
     for ax, lab in zip(axes, ("drag [N]", "lift [N]"), strict=True):
         ax.set_xlabel("depth of body centre [mm]")
         ax.set_ylabel(lab)
@@ -156,13 +168,18 @@ def _wedges(p: WedgeParams) -> StudyOutput:
 
     mat = materials.get(p.material)
     heights = p.heights_m[:3] if p.quick else p.heights_m
-    t = wedges_versus_plate(mat, depth=p.depth_m, base=p.base_m, width=p.width_m, heights=heights,
-                            tip_offsets=p.tip_offsets_m)
+    t = wedges_versus_plate(
+        mat, depth=p.depth_m, base=p.base_m, width=p.width_m, heights=heights, tip_offsets=p.tip_offsets_m
+    )
     fig, ax = plt.subplots(figsize=(6, 4))
     for e in p.tip_offsets_m:
         m = np.isclose(t.columns["tip_offset_m"], e)
-        ax.plot(np.degrees(t.columns["tip_half_angle_rad"][m]), t.columns["ratio"][m], marker="o",
-                label=f"tip offset {e * 1e3:g} mm")
+        ax.plot(
+            np.degrees(t.columns["tip_half_angle_rad"][m]),
+            t.columns["ratio"][m],
+            marker="o",
+            label=f"tip offset {e * 1e3:g} mm",
+        )
     ax.set_xlabel("tip half-angle [deg]")
     ax.set_ylabel("wedge force / plate force [-]")
     ax.legend()
@@ -178,13 +195,24 @@ def _superposition(p: SuperpositionParams) -> StudyOutput:
     mat = materials.get(p.material)
     out = StudyOutput()
     for sep in p.separations_m:
-        t = superposition(mat, Plate(0.02, 0.02), WheelCircular(0.01, 0.02), separation=sep,
-                          depth=p.depth_m, direction=math.radians(p.direction_deg))
+        t = superposition(
+            mat,
+            Plate(0.02, 0.02),
+            WheelCircular(0.01, 0.02),
+            separation=sep,
+            depth=p.depth_m,
+            direction=math.radians(p.direction_deg),
+        )
         out.tables[f"superposition_{sep:g}m"] = t
         diff = float(np.max(np.abs(t.columns["force_z_N"][3] - t.columns["force_z_N"][2])))
-        out.summary.append({"separation_m": sep, "composite_force_z_N": float(t.columns["force_z_N"][3]),
-                            "sum_force_z_N": float(t.columns["force_z_N"][2]),
-                            "difference_N": diff})
+        out.summary.append(
+            {
+                "separation_m": sep,
+                "composite_force_z_N": float(t.columns["force_z_N"][3]),
+                "sum_force_z_N": float(t.columns["force_z_N"][2]),
+                "difference_N": diff,
+            }
+        )
     return out
 
 
@@ -203,6 +231,7 @@ def register_study(name: str, params: type[_Params], run: Callable[[Any], StudyO
 
 
 def _validate(kind: str, values: dict[str, Any], where: str) -> _Params:
+    _load_plugins()
     if kind not in STUDIES:
         raise InputError(f"{where}kind", kind, f"one of {sorted(STUDIES)}")
     model = STUDIES[kind][0]
@@ -231,14 +260,23 @@ def load_study_file(path: str | Path) -> tuple[str, _Params]:
         raise InputError(f"{p.name}: study.kind", None, f"one of {sorted(STUDIES)}")
     for key in study:
         if key != "kind":
-            raise InputError(f"{p.name}: study.{key}", study[key], "only 'kind' (put settings in [parameters])")
+            raise InputError(
+                f"{p.name}: study.{key}", study[key], "only 'kind' (put settings in [parameters])"
+            )
     kind = str(study["kind"])
     return kind, _validate(kind, data.get("parameters", {}), f"{p.name}: ")
 
 
-def run_study(name_or_file: str, *, quick: bool = False, overrides: dict[str, Any] | None = None
-              ) -> tuple[str, StudyOutput]:
+def _load_plugins() -> None:
+    """Import the study modules that register themselves."""
+    from . import wheels  # noqa: F401
+
+
+def run_study(
+    name_or_file: str, *, quick: bool = False, overrides: dict[str, Any] | None = None
+) -> tuple[str, StudyOutput]:
     """Run a named study with defaults, or a study TOML file. Returns (kind, output)."""
+    _load_plugins()
     if name_or_file.endswith(".toml"):
         kind, params = load_study_file(name_or_file)
         values = params.model_dump()

@@ -29,8 +29,14 @@ class Check:
         return bool(abs(self.measured - self.expected) <= self.tolerance)
 
     def record(self) -> dict[str, object]:
-        return {"check": self.name, "measured": self.measured, "expected": self.expected,
-                "tolerance": self.tolerance, "passed": self.passed, "about": self.about}
+        return {
+            "check": self.name,
+            "measured": self.measured,
+            "expected": self.expected,
+            "tolerance": self.tolerance,
+            "passed": self.passed,
+            "about": self.about,
+        }
 
 
 def _zeta() -> list[Check]:
@@ -40,8 +46,15 @@ def _zeta() -> list[Check]:
     for name in materials.available():
         mat = materials.get(name)
         _, az = li2013_alpha_material(0.0, math.pi / 2, mat)
-        out.append(Check(f"alpha_z(0, 90 deg) / zeta [{name}]", float(az) / mat.zeta, 1.0, 1e-12,
-                         "RFT scale definition"))
+        out.append(
+            Check(
+                f"alpha_z(0, 90 deg) / zeta [{name}]",
+                float(az) / mat.zeta,
+                1.0,
+                1e-12,
+                "RFT scale definition",
+            )
+        )
     return out
 
 
@@ -73,13 +86,27 @@ def _plate_and_map() -> list[Check]:
     a = np.radians(np.arange(-90, 91, 30))
     m = alpha_map_plate(ms, angles=a, directions=np.radians(np.arange(0, 181, 30)))
     ax, az = li2013_alpha_material(m.columns["beta_rad"], m.columns["direction_rad"], ms)
-    dev = float(max(np.abs(m.columns["alpha_z_N_per_m3"] - az).max(),
-                    np.abs(m.columns["alpha_x_N_per_m3"] - ax).max()) / ms.zeta)
+    dev = float(
+        max(
+            np.abs(m.columns["alpha_z_N_per_m3"] - az).max(), np.abs(m.columns["alpha_x_N_per_m3"] - ax).max()
+        )
+        / ms.zeta
+    )
     return [
-        Check("plate F_z / (zeta A d), horizontal plate", float(fz.mean()), 1.0, 1e-12,
-              "linear in depth and area"),
-        Check("alpha map from plate intrusion vs law, max dev / zeta", dev, 0.0, 1e-8,
-              "body sum reproduces the pointwise law (edge-on cells use a 1e-9 rad limit)"),
+        Check(
+            "plate F_z / (zeta A d), horizontal plate",
+            float(fz.mean()),
+            1.0,
+            1e-12,
+            "linear in depth and area",
+        ),
+        Check(
+            "alpha map from plate intrusion vs law, max dev / zeta",
+            dev,
+            0.0,
+            1e-8,
+            "body sum reproduces the pointwise law (edge-on cells use a 1e-9 rad limit)",
+        ),
     ]
 
 
@@ -98,10 +125,20 @@ def _wheel() -> list[Check]:
     npy = rft_wrench(wheel, ms, pose, tw, backend="numpy").as_array()
     return [
         Check("steady wheel: F_z / W", w.fz / 130.0, 1.0, 1e-6, "load balance"),
-        Check("steady wheel: DP(omega=25) / DP(omega=1)", r2.drawbar_pull_N / r.drawbar_pull_N, 1.0,
-              1e-9, "quasi-static RFT is rate independent"),
-        Check("numba vs NumPy wrench, max rel dev", float(np.max(np.abs(nb - npy)) / np.max(np.abs(npy))),
-              0.0, 1e-10, "kernel equals its reference"),
+        Check(
+            "steady wheel: DP(omega=25) / DP(omega=1)",
+            r2.drawbar_pull_N / r.drawbar_pull_N,
+            1.0,
+            1e-9,
+            "quasi-static RFT is rate independent",
+        ),
+        Check(
+            "numba vs NumPy wrench, max rel dev",
+            float(np.max(np.abs(nb - npy)) / np.max(np.abs(npy))),
+            0.0,
+            1e-10,
+            "kernel equals its reference",
+        ),
     ]
 
 
