@@ -41,7 +41,7 @@ def _register() -> None:
     app.add_typer(rft_cmd.app, name="rft")
     intrude_cmd.register(app)
     demo_cmd.register(app)
-    for module_name in ("wheel_cmd", "calibrate_cmd", "study_cmd", "mpm_cmd", "validate_cmd"):
+    for module_name in ("wheel_cmd", "calibrate_cmd", "study_cmd", "mpm_cmd", "validate_cmd", "optimize_cmd"):
         try:
             module = __import__(f"terradyn.cli.{module_name}", fromlist=["register"])
         except ModuleNotFoundError as exc:

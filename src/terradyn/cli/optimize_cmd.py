@@ -1,0 +1,100 @@
+"""``terradyn optimize``: design optimisation."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import typer
+
+from .. import materials
+from ._common import OutputFormat, atomic_write_text, emit, save_figure
+
+app = typer.Typer(help="Design optimisation.", no_args_is_help=True)
+
+
+def register(root: typer.Typer) -> None:
+    root.add_typer(app, name="optimize")
+
+
+@app.command("flapped-wheel")
+def flapped_wheel(
+    material: str = typer.Option("CPS", "--material", help="Medium name or TOML file."),
+    hub_radius: float = typer.Option(0.05, "--hub-radius", help="Hub radius [m]."),
+    width: float = typer.Option(0.05, "--width", help="Wheel width [m]."),
+    load: float = typer.Option(10.0, "--load", help="Vertical load [N]."),
+    metric: str = typer.Option("velocity", "--metric", help="velocity or cost-of-transport."),
+    flap_count_max: int = typer.Option(12, "--flap-count-max", help="Largest flap count."),
+    length_ratio_max: float = typer.Option(
+        1.5, "--length-ratio-max", help="Largest flap length / hub radius."
+    ),
+    angle_max: float = typer.Option(60.0, "--angle-max", help="Largest |flap angle| [deg]."),
+    iterations: int = typer.Option(15, "--iterations", help="Differential-evolution generations."),
+    population: int = typer.Option(8, "--population", help="Population size multiplier."),
+    seed: int = typer.Option(0, "--seed", help="Random seed."),
+    plot_params: str = typer.Option(
+        "flap_count,flap_length_ratio", "--plot-params", help="Two parameters for the objective map."
+    ),
+    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
+    out: Path | None = typer.Option(None, "--out", help="Also write the best design here."),
+    trace: Path | None = typer.Option(None, "--trace", help="Write every evaluation (CSV)."),
+    plot: Path | None = typer.Option(None, "--plot", help="Convergence trace and objective map."),
+) -> None:
+    """Best flap count, length and angle of a flapped wheel (quasi-static RFT, global search)."""
+    from ..errors import InputError
+    from ..optimize import optimize_flapped_wheel
+
+    mat = materials.get(material)
+    if flap_count_max < 3:
+        raise InputError("--flap-count-max", flap_count_max, "an integer >= 3")
+    names = [n.strip() for n in plot_params.split(",")]
+    allowed = ("flap_count", "flap_length_ratio", "flap_angle")
+    if len(names) != 2 or any(n not in allowed for n in names) or names[0] == names[1]:
+        raise InputError("--plot-params", plot_params, f"two different names from {list(allowed)}")
+    res = optimize_flapped_wheel(
+        mat,
+        hub_radius=hub_radius,
+        width=width,
+        load=load,
+        metric=metric,
+        flap_count=(2, flap_count_max),
+        flap_length_ratio=(0.1, length_ratio_max),
+        flap_angle=(-math.radians(angle_max), math.radians(angle_max)),
+        seed=seed,
+        max_iterations=iterations,
+        population=population,
+    )
+    if trace is not None:
+        atomic_write_text(trace, res.evaluations.to_dataframe().to_csv(index=False))
+    if plot is not None:
+        _plot(res, names, plot, metric)
+    best = dict(res.best)
+    best["flap_angle_deg"] = math.degrees(best.pop("flap_angle"))
+    best["flap_count"] = int(best["flap_count"])
+    best["objective"] = res.best_value
+    best["metric"] = metric
+    best["evaluations"] = len(res.evaluations)
+    best["generations"] = len(res.trace)
+    emit(best, fmt, out, title="best flapped wheel")
+
+
+def _plot(res, names, path, metric):  # type: ignore[no-untyped-def]
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    fig, (a0, a1) = plt.subplots(1, 2, figsize=(11, 4))
+    a0.plot(np.arange(1, len(res.trace) + 1), res.trace, marker="o")
+    a0.set_xlabel("generation")
+    a0.set_ylabel(f"best {metric}")
+    a0.set_title("convergence")
+    c = res.evaluations.columns
+    ok = c["feasible"].astype(bool)
+    sc = a1.scatter(c[names[0]][ok], c[names[1]][ok], c=c["objective"][ok], cmap="viridis", s=14)
+    a1.plot([res.best[names[0]]], [res.best[names[1]]], "r*", ms=14, label="best")
+    fig.colorbar(sc, ax=a1, label=metric)
+    a1.set_xlabel(names[0])
+    a1.set_ylabel(names[1])
+    a1.set_title("objective over the evaluated designs")
+    a1.legend()
+    fig.tight_layout()
+    save_figure(fig, path)
