@@ -54,6 +54,8 @@ def model_factory(
     from ..locomotion.models import ModelSpec
 
     exit_angle = math.radians(check_finite("--exit-angle", exit_angle_deg))
+    if name.strip().lower() not in (*MODEL_NAMES, "wongreece", "wr"):
+        raise InputError("--model", name, f"one of {list(MODEL_NAMES)}")
     return ModelSpec(name, element_size=element_size, c1=c1, c2=c2, exit_angle=exit_angle)
 
 
@@ -142,6 +144,8 @@ def steady(
     body = wheel_body(shape, width, _shape_flags(shape, locals()))
     mat = materials.get(material)
     factory = model_factory(model, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
+    if plot is not None and factory.name != "rft":
+        raise InputError("--plot", str(plot), "only with --model rft (traction arrows of RFT elements)")
     res = wheel_steady(body, factory(mat), load, slip, omega=omega, phase_count=phases)
     if plot is not None:
         _plot_steady(body, mat, res, plot, element_size)

@@ -1,0 +1,54 @@
+import json
+
+import pytest
+
+
+def test_wheel_steady_json(run_cli, tmp_path):
+    code, out, err = run_cli("wheel", "steady", "--material", "MS", "--radius", "0.13", "--width", "0.16",
+                             "--load", "130", "--slip", "0.3", "--format", "json", "--plot",
+                             str(tmp_path / "w.png"))
+    assert code == 0, err
+    rec = json.loads(out)
+    for key in ("sinkage_m", "drawbar_pull_N", "drive_torque_Nm", "power_W"):
+        assert key in rec
+    assert 0 < rec["sinkage_m"] < 0.13
+    assert rec["power_W"] == pytest.approx(rec["drive_torque_Nm"] * 1.0)
+    assert (tmp_path / "w.png").stat().st_size > 1000
+
+
+def test_wheel_steady_independent_of_omega_flag(run_cli):
+    _, a, _ = run_cli("wheel", "steady", "--load", "130", "--slip", "0.2", "--format", "json")
+    _, b, _ = run_cli("wheel", "steady", "--load", "130", "--slip", "0.2", "--omega", "9", "--format", "json")
+    ra, rb = json.loads(a), json.loads(b)
+    assert rb["drawbar_pull_N"] == pytest.approx(ra["drawbar_pull_N"], rel=1e-9)
+    assert rb["power_W"] == pytest.approx(9 * ra["power_W"], rel=1e-9)
+
+
+def test_self_propelled_and_sweep(run_cli, tmp_path):
+    code, out, _ = run_cli("wheel", "self-propelled", "--load", "130", "--format", "json")
+    assert code == 0
+    assert abs(json.loads(out)["drawbar_pull_N"]) < 1e-6
+    csv = tmp_path / "sweep.csv"
+    code, _, err = run_cli("wheel", "sweep", "--model", "rft", "--material", "MS,CPS", "--load", "80,190",
+                           "--slip", "-0.5:0.5:5", "--format", "csv", "--out", str(csv), "--plot",
+                           str(tmp_path / "s.png"))
+    assert code == 0, err
+    assert len(csv.read_text().splitlines()) == 1 + 2 * 2 * 5
+
+
+@pytest.mark.parametrize(
+    ("args", "needle", "exit_code"),
+    [
+        (["--load", "130", "--slip", "1.5"], "slip", 2),
+        (["--load", "130", "--slip", "0.2", "--omega", "0"], "omega", 2),
+        (["--load", "-1", "--slip", "0.2"], "load", 2),
+        (["--load", "1e6", "--slip", "0.2"], "carries at most", 3),
+        (["--load", "130", "--slip", "0.2", "--model", "dem"], "--model", 2),
+        (["--load", "130", "--slip", "0.2", "--grouser-count", "3"], "--grouser-count", 2),
+    ],
+)
+def test_wheel_bad_input(run_cli, args, needle, exit_code):
+    code, out, err = run_cli("wheel", "steady", *args)
+    assert code == exit_code
+    assert needle in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
