@@ -4,9 +4,24 @@ import pytest
 
 
 def test_wheel_steady_json(run_cli, tmp_path):
-    code, out, err = run_cli("wheel", "steady", "--material", "MS", "--radius", "0.13", "--width", "0.16",
-                             "--load", "130", "--slip", "0.3", "--format", "json", "--plot",
-                             str(tmp_path / "w.png"))
+    code, out, err = run_cli(
+        "wheel",
+        "steady",
+        "--material",
+        "MS",
+        "--radius",
+        "0.13",
+        "--width",
+        "0.16",
+        "--load",
+        "130",
+        "--slip",
+        "0.3",
+        "--format",
+        "json",
+        "--plot",
+        str(tmp_path / "w.png"),
+    )
     assert code == 0, err
     rec = json.loads(out)
     for key in ("sinkage_m", "drawbar_pull_N", "drive_torque_Nm", "power_W"):
@@ -29,9 +44,24 @@ def test_self_propelled_and_sweep(run_cli, tmp_path):
     assert code == 0
     assert abs(json.loads(out)["drawbar_pull_N"]) < 1e-6
     csv = tmp_path / "sweep.csv"
-    code, _, err = run_cli("wheel", "sweep", "--model", "rft", "--material", "MS,CPS", "--load", "80,190",
-                           "--slip", "-0.5:0.5:5", "--format", "csv", "--out", str(csv), "--plot",
-                           str(tmp_path / "s.png"))
+    code, _, err = run_cli(
+        "wheel",
+        "sweep",
+        "--model",
+        "rft",
+        "--material",
+        "MS,CPS",
+        "--load",
+        "80,190",
+        "--slip",
+        "-0.5:0.5:5",
+        "--format",
+        "csv",
+        "--out",
+        str(csv),
+        "--plot",
+        str(tmp_path / "s.png"),
+    )
     assert code == 0, err
     assert len(csv.read_text().splitlines()) == 1 + 2 * 2 * 5
 
@@ -48,7 +78,7 @@ def test_self_propelled_and_sweep(run_cli, tmp_path):
     ],
 )
 def test_wheel_bad_input(run_cli, args, needle, exit_code):
-    code, out, err = run_cli("wheel", "steady", *args)
+    code, _, err = run_cli("wheel", "steady", *args)
     assert code == exit_code
     assert needle in err and "Traceback" not in err
     assert len(err.strip().splitlines()) == 1
