@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from abc import ABC, abstractmethod
 from functools import lru_cache
+from numbers import Real
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -12,6 +14,9 @@ from numpy.typing import NDArray
 from ..errors import InputError, check_positive
 from ._elements import SurfaceElements
 from ._path import Segment, discretize_loops, loop_polygon
+
+if TYPE_CHECKING:
+    from ._composite import Placed
 
 __all__ = ["Body"]
 
@@ -42,13 +47,29 @@ class Body(ABC):
     def discretize(self, element_size: float | None = None) -> SurfaceElements:
         """Surface elements no longer than ``element_size`` [m] (default :attr:`default_element_size`)."""
         size = self.default_element_size if element_size is None else element_size
-        if not (isinstance(size, int | float) and math.isfinite(size) and size > 0):
+        if not (
+            isinstance(size, Real) and not isinstance(size, bool) and math.isfinite(size) and size > 0
+        ):
             raise InputError("element_size", element_size, "a length > 0 [m]")
         if size > self.size:
             raise InputError(
                 "element_size", element_size, f"at most the body size {self.size:g} m", "refine it"
             )
         return _discretize_cached(self, float(size))
+
+    def _elements(self, size: float) -> SurfaceElements:
+        """Elements at most ``size`` [m] long, uncached (bodies with their own rule override this)."""
+        mid, nrm, lng, part = discretize_loops(self.loops(), size)
+        return SurfaceElements(mid, nrm, lng, self.width, part)
+
+    def placed(self, x: float = 0.0, z: float = 0.0, theta: float = 0.0) -> Placed:
+        """This body rotated by ``theta`` [rad] about +y (clockwise in view), then moved by (x, z) [m].
+
+        The result is a :class:`Placed` body (for example a part of a :class:`Composite`).
+        """
+        from ._composite import Placed
+
+        return Placed(self, x, z, theta)
 
     def outline(self, element_size: float | None = None) -> list[NDArray[np.float64]]:
         """Closed polygons (M, 2) [m] of the boundary in the body frame, for plots and inside tests."""
@@ -66,5 +87,4 @@ class Body(ABC):
 
 @lru_cache(maxsize=256)
 def _discretize_cached(body: Body, size: float) -> SurfaceElements:
-    mid, nrm, lng, part = discretize_loops(body.loops(), size)
-    return SurfaceElements(mid, nrm, lng, body.width, part)
+    return body._elements(size)
