@@ -37,3 +37,30 @@ def test_partially_buried_tilted_plate_matches_closed_form():
         got = intrusion_forces(Plate(length, width), MS, [d], angle=t, element_size=2e-5)
         want = float(az) * width * (d + a * k) ** 2 / (2 * k)
         assert got.columns["force_z_N"][0] == pytest.approx(want, rel=2e-3)
+
+
+def test_lift_drag_depth_linear_and_cylinder_lifts():
+    from terradyn.studies.intrusion import lift_drag
+
+    d = np.array([0.05, 0.08, 0.11])
+    t = lift_drag(MS, d, size=0.0254, width=0.0254)
+    for body in ("cylinder", "square", "half-cylinder-flat-up", "half-cylinder-flat-down"):
+        m = t.columns["body"] == body
+        drag = t.columns["drag_N"][m]
+        assert np.all(drag > 0)
+        np.testing.assert_allclose(np.diff(drag, 2), 0.0, atol=1e-9 * drag.max())
+    cyl = t.columns["lift_N"][t.columns["body"] == "cylinder"]
+    assert np.all(cyl > 0)  # drag-induced lift (Ding, Gravish & Goldman 2011)
+
+
+def test_wedge_flattens_to_plate_and_superposition_is_exact():
+    from terradyn.geometry import Plate, WheelCircular
+    from terradyn.studies.intrusion import superposition, wedges_versus_plate
+
+    t = wedges_versus_plate(MS, heights=[1e-4, 0.02, 0.08], element_size=2e-4)
+    ratio = t.columns["ratio"]
+    assert ratio[0] == pytest.approx(1.0, abs=0.01)
+    assert ratio[0] > ratio[1] > ratio[2] > 0
+    s = superposition(MS, Plate(0.02, 0.02), WheelCircular(0.01, 0.02), separation=0.05, direction=0.7)
+    for key in ("force_x_N", "force_z_N", "torque_y_Nm"):
+        assert s.columns[key][3] == pytest.approx(s.columns[key][2], rel=1e-12, abs=1e-12)

@@ -81,3 +81,37 @@ def test_bad_input():
         wheel_steady(WHEEL, materials.get("LPS"), 5000.0, 0.2)
     with pytest.raises(SolverError, match="exceeds"):
         wheel_self_propelled(WHEEL, MS, 130.0, drawbar_load=500.0)
+
+
+def test_grousered_wheel_periodic_average_and_extremes():
+    from terradyn.geometry import WheelGrousered
+
+    wheel = WheelGrousered(0.1, 0.1, grouser_count=10, grouser_height=0.01, grouser_thickness=0.004)
+    r = wheel_steady(wheel, materials.get("CPS"), 60.0, 0.3, phase_count=12)
+    assert r.phase_count == 12
+    assert r.drawbar_pull_min_N <= r.drawbar_pull_N <= r.drawbar_pull_max_N
+    assert r.vertical_force_min_N < 60.0 < r.vertical_force_max_N
+    assert r.sinkage_min_m <= r.sinkage_m <= r.sinkage_max_m
+    # The phase average converges as the phase resolution is refined.
+    fine = wheel_steady(wheel, materials.get("CPS"), 60.0, 0.3, phase_count=48)
+    assert fine.drawbar_pull_N == pytest.approx(r.drawbar_pull_N, rel=0.02)
+    # Grousers give more pull than a plain rim of the same outer radius at the same slip.
+    plain = wheel_steady(WheelCircular(0.11, 0.1), materials.get("CPS"), 60.0, 0.3)
+    assert r.drawbar_pull_N > plain.drawbar_pull_N
+
+
+def test_flapped_wheel_self_propelled():
+    from terradyn.optimize import flapped_wheel_performance
+
+    perf = flapped_wheel_performance(
+        materials.get("CPS"),
+        hub_radius=0.05,
+        width=0.05,
+        flap_count=6,
+        flap_length=0.03,
+        flap_angle=0.0,
+        load=10.0,
+        phase_count=12,
+    )
+    assert 0.0 < perf["velocity_normalised"] <= 1.0
+    assert perf["cost_of_transport"] > 0
