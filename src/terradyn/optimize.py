@@ -103,12 +103,8 @@ def optimize(
 
     trace: list[float] = []
 
-    def callback(*args: Any, **kwargs: Any) -> None:
-        res = kwargs.get("intermediate_result")
-        if res is None and args and hasattr(args[0], "fun"):
-            res = args[0]
-        if res is not None:
-            trace.append(sign * float(res.fun))
+    def callback(intermediate_result: Any) -> None:
+        trace.append(sign * float(intermediate_result.fun))
 
     res = differential_evolution(
         f,

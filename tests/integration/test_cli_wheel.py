@@ -82,3 +82,27 @@ def test_wheel_bad_input(run_cli, args, needle, exit_code):
     assert code == exit_code
     assert needle in err and "Traceback" not in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_optimize_flapped_wheel_small(run_cli, tmp_path):
+    code, out, err = run_cli(
+        "optimize",
+        "flapped-wheel",
+        "--iterations",
+        "2",
+        "--population",
+        "4",
+        "--format",
+        "json",
+        "--plot",
+        str(tmp_path / "o.png"),
+        "--trace",
+        str(tmp_path / "t.csv"),
+    )
+    assert code == 0, err
+    rec = json.loads(out)
+    assert 2 <= rec["flap_count"] <= 12 and 0 < rec["objective"] <= 1
+    assert rec["generations"] == 2
+    assert len((tmp_path / "t.csv").read_text().splitlines()) == 1 + rec["evaluations"]
+    code, _, err = run_cli("optimize", "flapped-wheel", "--plot-params", "flap_count,nope")
+    assert code == 2 and "--plot-params" in err

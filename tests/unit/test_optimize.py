@@ -24,7 +24,9 @@ def test_finds_known_optimum_of_synthetic_objective():
     assert res.best["x"] == pytest.approx(0.3, abs=2e-2)
     assert res.best["y"] == pytest.approx(-1.2, abs=2e-2)
     assert res.best_value == pytest.approx(3.0, abs=1e-3)
+    assert len(res.trace) > 5
     assert res.trace == sorted(res.trace)  # best-so-far never gets worse
+    assert res.trace[-1] == pytest.approx(res.best_value)
     assert len(res.evaluations) > 100
 
 
