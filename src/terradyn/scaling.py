@@ -121,7 +121,7 @@ def scale_body(body: Body, factor: float) -> Body:
             changes[f.name] = value * factor
         elif isinstance(value, np.ndarray):
             changes[f.name] = value * factor
-    return dataclasses.replace(body, **changes)  # type: ignore[type-var]
+    return dataclasses.replace(body, **changes)  # type: ignore[type-var,unused-ignore]
 
 
 def scale_test(test: WheelTest, factors: ScaleFactors) -> WheelTest:

@@ -68,9 +68,11 @@ def flapped_wheel(
         atomic_write_text(trace, res.evaluations.to_dataframe().to_csv(index=False))
     if plot is not None:
         _plot(res, names, plot, metric)
-    best = dict(res.best)
-    best["flap_angle_deg"] = math.degrees(best.pop("flap_angle"))
-    best["flap_count"] = int(best["flap_count"])
+    best: dict[str, object] = {
+        "flap_count": int(res.best["flap_count"]),
+        "flap_length_ratio": res.best["flap_length_ratio"],
+        "flap_angle_deg": math.degrees(res.best["flap_angle"]),
+    }
     best["objective"] = res.best_value
     best["metric"] = metric
     best["evaluations"] = len(res.evaluations)
@@ -78,7 +80,7 @@ def flapped_wheel(
     emit(best, fmt, out, title="best flapped wheel")
 
 
-def _plot(res, names, path, metric):  # type: ignore[no-untyped-def]
+def _plot(res, names, path, metric):
     import matplotlib.pyplot as plt
     import numpy as np
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -68,9 +68,9 @@ def _run_task(task: _Task) -> tuple[list[tuple[Any, ...]], list[str]]:
 def force_slip_sweep(
     body: Body,
     media: Sequence[Material],
-    models: dict[str, ModelFactory],
-    loads: Sequence[float],
-    slips: Sequence[float],
+    models: Mapping[str, ModelFactory],
+    loads: Sequence[float] | np.ndarray,
+    slips: Sequence[float] | np.ndarray,
     *,
     omega: float = 1.0,
     phase_count: int = 16,

@@ -22,7 +22,7 @@ def wheel_force_slip(
     *,
     media: Sequence[str] = ("MS", "MMS", "LPS", "CPS"),
     loads: Sequence[float] = (80.0, 130.0, 150.0, 190.0),
-    slips: Sequence[float] = tuple(np.round(np.linspace(-0.7, 0.7, 15), 10)),
+    slips: Sequence[float] | np.ndarray = tuple(np.round(np.linspace(-0.7, 0.7, 15), 10)),
     models: Sequence[str] = ("rft", "wong-reece"),
     radius: float = 0.13,
     width: float = 0.16,
