@@ -142,7 +142,34 @@ def _wheel() -> list[Check]:
     ]
 
 
-CHECKS: list[Callable[[], list[Check]]] = [_zeta, _symmetry, _plate_and_map, _wheel]
+def _wong_reece() -> list[Check]:
+    from ..geometry import WheelCircular
+    from ..locomotion import wheel_steady
+    from ..terramechanics import WongReeceModel, wong_reece_wheel, wong_reece_wheel_forces
+
+    lps = materials.get("LPS")
+    direct = wong_reece_wheel(0.13, 0.16, lps, 0.3, 130.0)
+    again = wong_reece_wheel_forces(0.13, 0.16, lps, 0.3, entry_angle=direct.entry_angle)
+    via = wheel_steady(WheelCircular(0.13, 0.16), WongReeceModel(lps), 130.0, 0.3)
+    return [
+        Check(
+            "Wong-Reece: W from its own integrals / load",
+            again.load / 130.0,
+            1.0,
+            1e-9,
+            "entry-angle solve closes the vertical balance",
+        ),
+        Check(
+            "Wong-Reece: DP via steady solver / direct",
+            via.drawbar_pull_N / direct.drawbar_pull,
+            1.0,
+            1e-6,
+            "terrain-model interface agrees with the direct solve",
+        ),
+    ]
+
+
+CHECKS: list[Callable[[], list[Check]]] = [_zeta, _symmetry, _plate_and_map, _wheel, _wong_reece]
 
 
 def run_checks() -> list[Check]:
