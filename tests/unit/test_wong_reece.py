@@ -13,6 +13,7 @@ from terradyn.kinematics import Pose2D, Twist2D
 from terradyn.materials import BekkerParameters, Material, get
 from terradyn.terrain import TerrainModel
 from terradyn.terramechanics import WongReeceModel, wong_reece_wheel, wong_reece_wheel_forces
+from terradyn.terramechanics import _kernels as wrk
 from terradyn.terramechanics import wong_reece as wr
 
 R, B = 0.13, 0.16
@@ -87,13 +88,13 @@ def test_quadrature_converged(medium, slip, load):
 def test_skid_sign_change_of_shear_is_split():
     # MMS at s = -0.1 and 190 N: j changes sign inside the contact; the quadrature cuts there.
     t1 = np.array([0.56])
-    ends = wr._breakpoints_reference(t1, 0.0, -0.1, 0.43 - 0.032)
+    ends = wrk._breakpoints_reference(t1, 0.0, -0.1, 0.43 - 0.032)
     zero = ends[0, 2]
     assert 0.0 < zero < 0.56
     g = (0.56 - zero) - 1.1 * (math.sin(0.56) - math.sin(zero))
     assert abs(g) < 1e-14
     # Driving: no interior sign change; the cut collapses onto theta_m.
-    ends = wr._breakpoints_reference(t1, 0.0, 0.3, 0.43 + 0.096)
+    ends = wrk._breakpoints_reference(t1, 0.0, 0.3, 0.43 + 0.096)
     assert ends[0, 1] == ends[0, 2]
 
 
@@ -118,8 +119,8 @@ def test_numba_kernel_matches_numpy_reference(slip, exit_angle):
             32,
         )
         np.testing.assert_allclose(
-            wr._wong_reece_integrals_many(*args),
-            wr._wong_reece_integrals_reference(*args),
+            wrk._wong_reece_integrals_many(*args),
+            wrk._wong_reece_integrals_reference(*args),
             rtol=1e-11,
             atol=1e-11,
         )
