@@ -106,3 +106,46 @@ def test_optimize_flapped_wheel_small(run_cli, tmp_path):
     assert len((tmp_path / "t.csv").read_text().splitlines()) == 1 + rec["evaluations"]
     code, _, err = run_cli("optimize", "flapped-wheel", "--plot-params", "flap_count,nope")
     assert code == 2 and "--plot-params" in err
+
+
+def test_wheel_simulate_summary_and_outputs(run_cli, tmp_path):
+    ts = tmp_path / "ts.csv"
+    code, out, err = run_cli(
+        "wheel",
+        "simulate",
+        "--material",
+        "CPS",
+        "--mass",
+        "5",
+        "--omega",
+        "2",
+        "--duration",
+        "1.5",
+        "--format",
+        "json",
+        "--out",
+        str(ts),
+        "--plot",
+        str(tmp_path / "ts.png"),
+    )
+    assert code == 0, err
+    rec = json.loads(out)
+    for key in ("forward_velocity_m_s", "slip", "sinkage_m", "drive_torque_Nm"):
+        assert key in rec
+    assert 0 < rec["slip"] < 0.5
+    assert ts.read_text().splitlines()[0].startswith("t")
+    code, _, err = run_cli("wheel", "simulate", "--mass", "-1", "--omega", "2", "--duration", "1")
+    assert code == 2 and "mass" in err and "Traceback" not in err
+    code, _, err = run_cli(
+        "wheel",
+        "simulate",
+        "--mass",
+        "5",
+        "--omega",
+        "2",
+        "--duration",
+        "1",
+        "--out",
+        str(tmp_path / "x.txt"),
+    )
+    assert code == 2 and "--out" in err

@@ -86,6 +86,19 @@ def _fmt_cell(value: Any) -> str:
     return escape(str(value))
 
 
+def _umask_mode() -> int:
+    """Permissions a plainly created file would get (0o666 minus the umask)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+def finalize_temp(tmp: str | Path, target: Path) -> None:
+    """Give a finished temporary file normal permissions and move it into place atomically."""
+    os.chmod(tmp, _umask_mode())
+    os.replace(tmp, target)
+
+
 def atomic_write_text(path: str | Path, text: str) -> Path:
     """Write ``text`` to ``path`` through a temporary file in the same folder (no partial files)."""
     p = Path(path)
@@ -95,7 +108,7 @@ def atomic_write_text(path: str | Path, text: str) -> Path:
     try:
         with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
             fh.write(text)
-        os.replace(tmp, p)
+        finalize_temp(tmp, p)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
@@ -131,7 +144,7 @@ def save_figure(fig: Any, path: Path) -> Path:
     os.close(fd)
     try:
         fig.savefig(tmp, dpi=130, bbox_inches="tight")
-        os.replace(tmp, p)
+        finalize_temp(tmp, p)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise

@@ -15,7 +15,7 @@ from ..geometry import Body
 from ..locomotion.models import MODEL_NAMES
 from ..materials import Material
 from ._bodies import BodyKind, BodyOptions, build_body
-from ._common import OutputFormat, emit, parse_float_list, progress, save_figure
+from ._common import OutputFormat, emit, finalize_temp, parse_float_list, progress, save_figure
 
 app = typer.Typer(help="Wheel locomotion: steady solves, sweeps, free rolling.", no_args_is_help=True)
 
@@ -291,3 +291,91 @@ def _shape_flags(shape: WheelShape, values: dict[str, Any]) -> dict[str, Any]:
     if shape in (WheelShape.flapped, WheelShape.polygon):
         flags["radius"] = None  # the default --radius belongs to circular and grousered wheels
     return flags
+
+
+@app.command("simulate")
+def simulate(
+    material: str = typer.Option("CPS", "--material", help="Medium name or TOML file."),
+    mass: float = typer.Option(..., "--mass", help="Wheel (and carriage) mass [kg]."),
+    omega: float | None = typer.Option(None, "--omega", help="Prescribed spin [rad/s] (target of a ramp)."),
+    ramp: float | None = typer.Option(None, "--ramp", help="Spin ramp rate [rad/s^2]."),
+    torque: float | None = typer.Option(None, "--torque", help="Prescribed motor torque [N m] instead."),
+    initial_velocity: float = typer.Option(0.0, "--initial-velocity", help="Initial forward speed [m/s]."),
+    duration: float = typer.Option(..., "--duration", help="Simulated time [s]."),
+    dt: float | None = typer.Option(None, "--dt", help="Time step [s] (default: stable step)."),
+    inertia: float | None = typer.Option(None, "--inertia", help="Moment of inertia [kg m^2]."),
+    drawbar_load: float = typer.Option(0.0, "--drawbar-load", help="Rearward load [N]."),
+    gravity: float = typer.Option(9.81, "--gravity", help="Gravity [m/s^2]."),
+    model: str = typer.Option("rft", "--model", help="rft or drft."),
+    shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
+    radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
+    width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
+    thickness: float | None = BodyOptions.thickness,
+    grouser_count: int | None = BodyOptions.grouser_count,
+    grouser_height: float | None = BodyOptions.grouser_height,
+    grouser_thickness: float | None = BodyOptions.grouser_thickness,
+    hub_radius: float | None = BodyOptions.hub_radius,
+    flap_count: int | None = BodyOptions.flap_count,
+    flap_length: float | None = BodyOptions.flap_length,
+    flap_angle: float | None = BodyOptions.flap_angle,
+    points_file: Path | None = BodyOptions.points_file,
+    output_every: int = typer.Option(10, "--output-every", help="Store every N-th step."),
+    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Summary format."),
+    out: Path | None = typer.Option(None, "--out", help="Time series file (.csv, .json or .nc)."),
+    plot: Path | None = typer.Option(None, "--plot", help="Time-series plot (PNG/PDF)."),
+    animate: Path | None = typer.Option(None, "--animate", help="Animation (.gif or .mp4)."),
+) -> None:
+    """Free wheel driven by a spin or torque: time series and the steady state over the last revolutions."""
+    from ..locomotion.dynamics import simulate_wheel
+
+    if model not in ("rft", "drft"):
+        raise InputError("--model", model, "'rft' or 'drft'")
+    if out is not None and out.suffix not in (".csv", ".json", ".nc"):
+        raise InputError("--out", str(out), "a file ending in .csv, .json or .nc")
+    body = wheel_body(shape, width, _shape_flags(shape, locals()))
+    mat = materials.get(material)
+    res = simulate_wheel(
+        body,
+        mat,
+        model=model,
+        mass=mass,
+        inertia=inertia,
+        omega=omega,
+        ramp=ramp,
+        torque=torque,
+        duration=duration,
+        dt=dt,
+        initial_velocity=initial_velocity,
+        drawbar_load=drawbar_load,
+        gravity=gravity,
+        output_every=output_every,
+    )
+    summary = res.steady_summary()
+    if out is not None:
+        _atomic_save(res, out)
+    if plot is not None:
+        from ..plotting.animation import plot_time_series
+
+        axes = plot_time_series(res)
+        save_figure(axes.ravel()[0].figure, plot)
+    if animate is not None:
+        from ..plotting.animation import animate_body
+
+        animate_body(body, mat, res, animate)
+    emit(summary, fmt, None)
+
+
+def _atomic_save(res: Any, path: Path) -> None:
+    import os
+    import tempfile
+
+    if path.parent and not path.parent.exists():
+        raise InputError("--out", str(path), "a path in an existing folder")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent or Path("."))
+    os.close(fd)
+    try:
+        res.save(tmp)
+        finalize_temp(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
