@@ -49,3 +49,71 @@ def run(
     for name, fig in result.figures.items():
         save_figure(fig, out / f"{name}.png")
     emit(result.summary, fmt, None, title=f"study {kind}")
+
+
+@app.command("high-speed")
+def high_speed(
+    material: str = typer.Option("poppy-cp", "--material", help="Medium with a critical density."),
+    models: str = typer.Option("rft,drft", "--models", help="Terrain models, comma separated."),
+    omega: str | None = typer.Option(None, "--omega", help="Spin rates [rad/s]: list or a:b:n."),
+    gravity: float = typer.Option(9.81, "--gravity", help="Gravity [m/s^2]."),
+    initial_velocity: float = typer.Option(0.0, "--initial-velocity", help="Initial speed [m/s]."),
+    ramp: float | None = typer.Option(None, "--ramp", help="Spin ramp rate [rad/s^2]."),
+    slip_margin: float = typer.Option(0.05, "--slip-margin", help="Slip rise that defines the onset."),
+    reduced: bool = typer.Option(False, "--reduced", help="Fewer spin rates (quick look)."),
+    out: Path | None = typer.Option(None, "--out", help="Folder for the table and plot."),
+    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
+) -> None:
+    """Grousered wheel on poppy seeds over spin rates: the onset of the sharp rise in slip (ch. 8)."""
+    from ..studies.high_speed import high_speed_sweep
+    from ._common import parse_float_list
+
+    if out is not None and out.exists() and not out.is_dir():
+        raise InputError("--out", str(out), "a folder path")
+    names = [m.strip() for m in models.split(",") if m.strip()]
+    omegas = parse_float_list("--omega", omega) if omega else None
+    res = high_speed_sweep(
+        material=material,
+        models=names,
+        omegas=omegas,
+        gravity=gravity,
+        initial_velocity=initial_velocity,
+        ramp=ramp,
+        slip_margin=slip_margin,
+        reduced=reduced,
+    )
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        atomic_write_text(out / "high_speed.csv", res.table.to_dataframe().to_csv(index=False))
+        save_figure(_plot_high_speed(res), out / "high_speed.png")
+    onset = res.onset
+    rec = {
+        "omega_onset_rad_s": onset.get("omega_onset_rad_s"),
+        "omega_onset_normalised": onset.get("omega_onset_normalised"),
+    }
+    rec.update({k: v for k, v in onset.items() if k not in rec})
+    emit(rec, fmt, None, title="slip onset")
+
+
+def _plot_high_speed(res):  # type: ignore[no-untyped-def]
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    c = res.table.columns
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4))
+    keys = [k for k in ("velocity_normalised", "slip", "sinkage_normalised") if k in c]
+    for model in dict.fromkeys(c["model"].tolist()):
+        m = c["model"] == model
+        x = c["omega_normalised"][m] if "omega_normalised" in c else c["omega_rad_s"][m]
+        for ax, key in zip(axes, keys, strict=False):
+            ax.plot(x, c[key][m], marker="o", label=model)
+            ax.set_ylabel(key)
+    for ax in axes:
+        ax.set_xlabel(r"$\omega \sqrt{\ell / g}$")
+        ax.legend()
+    onset = res.onset.get("omega_onset_normalised")
+    if onset is not None and np.isfinite(onset):
+        for ax in axes:
+            ax.axvline(onset, color="0.5", ls="--")
+    fig.tight_layout()
+    return fig
