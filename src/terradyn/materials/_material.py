@@ -188,6 +188,7 @@ class Material:
     continuum : ContinuumParameters or None
     grain_density, bulk_density, critical_density : float or None  [kg/m^3]
     internal_friction_angle : float or None  [rad] (3D-RFT media scaling, MPM mu_s mapping)
+    surface_friction : float or None  body-medium friction coefficient [-] (3D-RFT tangential cap)
     drft_lambda : float or None  inertial coefficient of dynamic RFT [-]
     provenance : Provenance
     """
@@ -202,6 +203,7 @@ class Material:
     critical_density: float | None = None
     internal_friction_angle: float | None = None
     drft_lambda: float | None = None
+    surface_friction: float | None = None
     provenance: Provenance = field(default_factory=Provenance)
 
     def __post_init__(self) -> None:
@@ -221,6 +223,8 @@ class Material:
             )
         if self.drft_lambda is not None:
             check_positive("material.drft_lambda", self.drft_lambda, allow_zero=True)
+        if self.surface_friction is not None:
+            check_range("material.surface_friction", self.surface_friction, 0.0, 10.0)
         if (
             self.grain_density is not None
             and self.critical_density is not None

@@ -44,7 +44,7 @@ _CONTINUUM_KEYS = {
     "surface_friction",
     "notes",
 }
-_FRICTION_KEYS = {"internal_friction_angle_deg", "notes"}
+_FRICTION_KEYS = {"internal_friction_angle_deg", "surface_friction", "notes"}
 _DRFT_KEYS = {"lambda", "notes"}
 
 
@@ -162,6 +162,7 @@ def from_dict(data: dict[str, Any], *, source: str = "<dict>") -> Material:
         critical_density=opt(density, "critical_kg_m3", "density"),
         internal_friction_angle=math.radians(phi_deg) if phi_deg is not None else None,
         drft_lambda=opt(drft, "lambda", "drft"),
+        surface_friction=opt(friction, "surface_friction", "friction"),
         provenance=Provenance(
             citation=str(meta.get("citation", "")),
             doi=str(meta.get("doi", "")),
