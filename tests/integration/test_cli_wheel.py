@@ -149,3 +149,14 @@ def test_wheel_simulate_summary_and_outputs(run_cli, tmp_path):
         str(tmp_path / "x.txt"),
     )
     assert code == 2 and "--out" in err
+
+
+def test_study_high_speed_reduced(run_cli, tmp_path):
+    code, out, err = run_cli(
+        "study", "high-speed", "--reduced", "--format", "json", "--out", str(tmp_path / "hs")
+    )
+    assert code == 0, err
+    rec = json.loads(out)
+    assert rec["omega_onset_rad_s"] > 0
+    assert 0.2 < rec["omega_onset_normalised"] < 2.0
+    assert (tmp_path / "hs" / "high_speed.csv").exists()

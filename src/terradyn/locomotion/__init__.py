@@ -8,9 +8,21 @@ from .steady import (
 )
 from .sweeps import force_slip_sweep
 
+
+def __getattr__(name: str) -> object:
+    """Lazy access to the time integrator (its numba kernels load on first use)."""
+    if name in ("simulate_wheel", "stable_time_step", "WheelDynamicsResult"):
+        from . import dynamics
+
+        return getattr(dynamics, name)
+    raise AttributeError(name)
+
 __all__ = [
+    "WheelDynamicsResult",
     "WheelSteadyResult",
     "force_slip_sweep",
+    "simulate_wheel",
+    "stable_time_step",
     "wheel_nominal_radius",
     "wheel_self_propelled",
     "wheel_steady",
