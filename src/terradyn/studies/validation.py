@@ -169,7 +169,40 @@ def _wong_reece() -> list[Check]:
     ]
 
 
-CHECKS: list[Callable[[], list[Check]]] = [_zeta, _symmetry, _plate_and_map, _wheel, _wong_reece]
+def _dynamics() -> list[Check]:
+    from ..geometry import WheelCircular
+    from ..kinematics import Pose2D, Twist2D
+    from ..locomotion import simulate_wheel, wheel_self_propelled
+    from ..rft import DRFTModel, rft_wrench
+
+    ms, wheel = materials.get("MS"), WheelCircular(0.13, 0.16)
+    pose, tw = Pose2D(0, 0.11, 0.3), Twist2D(0.05, -0.01, 1e-9)
+    rft = rft_wrench(wheel, ms, pose, tw).as_array()
+    drft = DRFTModel(ms, inertial_coefficient=0.0, structural_correction=True).wrench(wheel, pose, tw)
+    dev = float(np.max(np.abs(drft.as_array() - rft)) / np.max(np.abs(rft)))
+    steady = wheel_self_propelled(wheel, ms, 130.0, omega=5.0)
+    run = simulate_wheel(wheel, ms, mass=130.0 / 9.81, omega=5.0, duration=8.0)
+    dyn = run.steady_summary()
+    return [
+        Check("DRFT (lambda = 0, omega -> 0) vs RFT, max rel dev", dev, 0.0, 1e-9, "DRFT reduces to RFT"),
+        Check(
+            "free wheel: dynamic slip - steady slip",
+            dyn["slip"] - steady.slip,
+            0.0,
+            2e-3,
+            "time integration reaches the quasi-static steady state",
+        ),
+    ]
+
+
+CHECKS: list[Callable[[], list[Check]]] = [
+    _zeta,
+    _symmetry,
+    _plate_and_map,
+    _wheel,
+    _wong_reece,
+    _dynamics,
+]
 
 
 def run_checks() -> list[Check]:
