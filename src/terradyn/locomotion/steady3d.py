@@ -1,0 +1,520 @@
+"""Steady forced-slip state of a wheel on triangle meshes with 3D RFT, at a slip and a slip angle.
+
+Frames and conventions
+----------------------
+The wheel mesh is given in its body frame with the origin on the axle and the axle along body y
+(x forward, z up, DESIGN.md section 4). The solve works in the *wheel frame*: x along the wheel
+heading (longitudinal), y along the axle (lateral, + to the wheel's left), z up; the undisturbed free
+surface is horizontal at ``surface_level``. 3D RFT is isotropic about the vertical (its local frame is
+built from the direction of motion), so where the wheel heads in the world does not change anything
+reported in the wheel frame.
+
+* Spin omega > 0 about +y rolls the wheel forward. The longitudinal slip is
+  ``s = 1 - V_x / (omega r)`` with V_x the axle speed along the heading and r the nominal radius
+  (default: the largest distance of a vertex from the axle in the body x-z plane), so
+  ``V_x = (1 - s) omega r``.
+* Slip angle (ISO 8855 sign): ``slip_angle = (direction of the axle velocity) - (heading)``, measured
+  counter-clockwise seen from above (about +z). A positive slip angle means the wheel moves towards
+  its left, with lateral velocity ``V_y = V_x tan(slip_angle)``. Under this sign the soil's lateral
+  force on a plain wheel opposes V_y, i.e. it is negative for a positive slip angle.
+* Outputs are soil forces and moments on the wheel, moments about the axle centre, in the wheel
+  frame: drawbar pull = F_x (+ forward), side force = F_y (+ left), vertical force = F_z,
+  drive torque = -M_y (the motor torque, + driving forward), overturning moment = M_x (about the
+  longitudinal axis through the axle, right-hand rule), aligning moment = M_z (about the vertical
+  through the axle, + counter-clockwise seen from above).
+* Periodic wheels (grousers) are averaged over ``phase_count`` wheel angles spread evenly over one
+  ``period``: the mean vertical force balances the load, and means, minima and maxima over the
+  period are reported. By default the period is detected from the mesh
+  (:func:`wheel_period_3d`: the smallest turn about the axle that maps the vertices onto themselves,
+  e.g. 2 pi / lug count). An axisymmetric wheel needs ``phase_count = 1``.
+
+References
+----------
+S. Agarwal, D. I. Goldman, K. Kamrin, "Mechanistic framework for reduced-order models in soft
+materials: application to three-dimensional granular intrusion", PNAS 120, e2214017120 (2023).
+doi:10.1073/pnas.2214017120
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import brentq
+
+from ..errors import InputError, SolverError, check_finite, check_positive, check_range
+from ..geometry3d import TriangleMesh
+from ..materials import Material
+from ..results import TableResult
+
+__all__ = [
+    "WheelSteady3DResult",
+    "steady3d_record",
+    "sweep_3d",
+    "wheel_nominal_radius_3d",
+    "wheel_period_3d",
+    "wheel_steady_3d",
+]
+
+# Axle heights of the coarse scan that brackets the load.
+_SCAN_POINTS = 17
+
+
+@dataclass(frozen=True)
+class WheelSteady3DResult:
+    """Steady operating point of a wheel in 3D RFT (period-averaged for periodic wheels).
+
+    Attributes (SI, wheel frame: x along the heading, y along the axle to the left, z up)
+    -------------------------------------------------------------------------------------
+    model : "rft3d"; slip [-]; slip_angle_rad [rad] (ISO sign, module notes); load_N [N];
+    omega_rad_s [rad/s]; nominal_radius_m [m];
+    longitudinal_velocity_m_s, lateral_velocity_m_s : axle velocity V_x, V_y [m/s];
+    sinkage_m : depth of the wheel's lowest point below the undisturbed surface [m] (period mean);
+    axle_height_m : axle height above the surface [m] (negative when buried);
+    drawbar_pull_N : F_x [N], + forward; side_force_N : F_y [N], + left; vertical_force_N : F_z [N]
+    (equals the load); drive_torque_Nm : -M_y [N m], + driving forward; power_W : drive torque x omega
+    [W]; tractive_efficiency : drawbar_pull x V_x / power [-] (0 when power <= 0);
+    aligning_moment_Nm : M_z [N m]; overturning_moment_Nm : M_x [N m] (moments about the axle centre);
+    contact_x_min_m, contact_x_max_m, contact_y_min_m, contact_y_max_m : extent of the loaded facets
+    (centroids) relative to the axle, at phase 0 [m]; contact_length_m, contact_width_m : their spans;
+    entry_angle_rad, exit_angle_rad : front and rear ends of the loaded contact in the x-z plane, from
+    the downward vertical, + towards the front (phase 0) [rad];
+    *_min_*, *_max_* : extremes over the period (equal to the mean for phase_count = 1);
+    phase_count; period_rad : wheel angle spanned by the phases [rad] (0 for one phase); facet_count.
+    """
+
+    model: str
+    slip: float
+    slip_angle_rad: float
+    load_N: float
+    omega_rad_s: float
+    nominal_radius_m: float
+    longitudinal_velocity_m_s: float
+    lateral_velocity_m_s: float
+    sinkage_m: float
+    axle_height_m: float
+    drawbar_pull_N: float
+    side_force_N: float
+    vertical_force_N: float
+    drive_torque_Nm: float
+    power_W: float
+    tractive_efficiency: float
+    aligning_moment_Nm: float
+    overturning_moment_Nm: float
+    contact_x_min_m: float
+    contact_x_max_m: float
+    contact_y_min_m: float
+    contact_y_max_m: float
+    contact_length_m: float
+    contact_width_m: float
+    entry_angle_rad: float
+    exit_angle_rad: float
+    drawbar_pull_min_N: float
+    drawbar_pull_max_N: float
+    side_force_min_N: float
+    side_force_max_N: float
+    drive_torque_min_Nm: float
+    drive_torque_max_Nm: float
+    vertical_force_min_N: float
+    vertical_force_max_N: float
+    sinkage_min_m: float
+    sinkage_max_m: float
+    phase_count: int
+    period_rad: float
+    facet_count: int
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def slip_angle_deg(self) -> float:
+        """Slip angle [deg]."""
+        return math.degrees(self.slip_angle_rad)
+
+    def to_dict(self) -> dict[str, Any]:
+        """All fields (``extra`` merged in)."""
+        d = asdict(self)
+        d.pop("extra")
+        d.update(self.extra)
+        return d
+
+    def summary(self) -> dict[str, float]:
+        """The headline figures (as :func:`steady3d_record`)."""
+        return steady3d_record(self)
+
+
+def steady3d_record(result: WheelSteady3DResult) -> dict[str, float]:
+    """JSON-ready record of a 3D steady solve (SI, unit-suffixed keys; slip angle in degrees).
+
+    Keys: sinkage_m, drawbar_pull_N, drive_torque_Nm, power_W, side_force_N, aligning_moment_Nm,
+    vertical_force_N, slip, slip_angle_deg.
+    """
+    if not isinstance(result, WheelSteady3DResult):
+        raise InputError("result", type(result).__name__, "a WheelSteady3DResult")
+    return {
+        "sinkage_m": result.sinkage_m,
+        "drawbar_pull_N": result.drawbar_pull_N,
+        "drive_torque_Nm": result.drive_torque_Nm,
+        "power_W": result.power_W,
+        "side_force_N": result.side_force_N,
+        "aligning_moment_Nm": result.aligning_moment_Nm,
+        "vertical_force_N": result.vertical_force_N,
+        "slip": result.slip,
+        "slip_angle_deg": result.slip_angle_deg,
+    }
+
+
+def wheel_nominal_radius_3d(mesh: TriangleMesh) -> float:
+    """Largest distance [m] of a vertex from the axle (body y axis), measured in the body x-z plane."""
+    _check_mesh(mesh)
+    v = mesh.vertices
+    return float(np.sqrt(v[:, 0] ** 2 + v[:, 2] ** 2).max())
+
+
+def wheel_period_3d(mesh: TriangleMesh, *, tolerance: float | None = None) -> float:
+    """Smallest wheel angle [rad] after which the mesh repeats: 2 pi / k for the largest k found.
+
+    A turn by 2 pi / k about the axle (body y) must map every vertex to within ``tolerance`` [m]
+    (default 1e-5 x the nominal radius, loose enough for single-precision STL files) of a vertex.
+    Candidates k are the divisors of the number of distinct angles of the outermost vertices.
+    Returns 2 pi when the mesh has no rotational symmetry; a meshed cylinder of N rim quads gives
+    2 pi / N.
+    """
+    from scipy.spatial import cKDTree
+
+    _check_mesh(mesh)
+    v = mesh.vertices
+    rho = np.hypot(v[:, 0], v[:, 2])
+    rmax = float(rho.max())
+    tol = 1e-5 * rmax if tolerance is None else check_positive("tolerance", tolerance)
+    outer = v[rho > rmax - tol]
+    angles = np.sort(np.arctan2(outer[:, 2], outer[:, 0]))
+    gaps = np.diff(np.concatenate((angles, angles[:1] + 2.0 * math.pi)))
+    distinct = max(1, int(np.count_nonzero(gaps > tol / rmax)))
+    tree = cKDTree(v)
+    for k in sorted((d for d in range(2, distinct + 1) if distinct % d == 0), reverse=True):
+        rot = _rotations_y(np.array([2.0 * math.pi / k]))[0]
+        dist, _ = tree.query(v @ rot.T, distance_upper_bound=tol)
+        if np.all(np.isfinite(dist)):
+            return 2.0 * math.pi / k
+    return 2.0 * math.pi
+
+
+def _check_mesh(mesh: TriangleMesh) -> TriangleMesh:
+    if not isinstance(mesh, TriangleMesh):
+        raise InputError("mesh", type(mesh).__name__, "a terradyn.geometry3d.TriangleMesh")
+    return mesh
+
+
+def _rotations_y(thetas: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Rotations (P, 3, 3) by the wheel angles ``thetas`` [rad] about +y (the spin sense)."""
+    c, s = np.cos(thetas), np.sin(thetas)
+    r = np.zeros((thetas.size, 3, 3))
+    r[:, 0, 0], r[:, 0, 2], r[:, 1, 1], r[:, 2, 0], r[:, 2, 2] = c, s, 1.0, -s, c
+    return r
+
+
+@dataclass(frozen=True, eq=False)
+class _Wheel3D:
+    """A wheel at one twist: period-averaged wrenches at axle heights (vectorised over states)."""
+
+    mesh: TriangleMesh
+    medium: Material | float
+    linear: NDArray[np.float64]
+    angular: NDArray[np.float64]
+    rotations: NDArray[np.float64]
+    surface: float
+    leading_edge: bool
+    surface_friction: float | None
+
+    def wrenches(self, heights: ArrayLike) -> NDArray[np.float64]:
+        """Wrenches (H, P, 6) [N, N m] at axle heights (H,) [m] over the P phases, about the axle."""
+        from ..rft.rft3d import rft3d_wrench_many
+
+        h = np.atleast_1d(np.asarray(heights, dtype=np.float64))
+        phases = self.rotations.shape[0]
+        count = h.size * phases
+        positions = np.zeros((count, 3))
+        positions[:, 2] = np.repeat(h, phases)
+        out = rft3d_wrench_many(
+            self.mesh, self.medium, positions, np.tile(self.rotations, (h.size, 1, 1)),
+            np.broadcast_to(self.linear, (count, 3)), np.broadcast_to(self.angular, (count, 3)),
+            surface_level=self.surface, leading_edge=self.leading_edge,
+            surface_friction=self.surface_friction,
+        )  # fmt: skip
+        return out.reshape(h.size, phases, 6)
+
+    def vertical(self, heights: ArrayLike) -> NDArray[np.float64]:
+        """Period-mean vertical force [N] at each axle height [m]."""
+        return self.wrenches(heights)[..., 2].mean(axis=1)
+
+
+def _solve_height(wheel: _Wheel3D, load: float, low: float, high: float, what: str) -> float:
+    """Axle height [m] in [low, high] where the period-mean vertical force equals ``load`` [N].
+
+    ``low`` puts the axle at the surface (the deepest state the solver accepts); at ``high`` the wheel
+    only just touches, so the force there is zero.
+    """
+    grid = np.linspace(low, high, _SCAN_POINTS)
+    fz = wheel.vertical(grid)
+    if fz[0] < load:
+        raise SolverError(
+            f"{what}: the medium carries at most {fz[0]:.6g} N (maximum, with the axle at the surface), "
+            f"less than the load {load:.6g} N (lower the load or use a wider or larger wheel)"
+        )
+    j = int(np.nonzero(fz < load)[0][0])
+    if np.any(fz[j:] >= load):
+        raise SolverError(f"{what}: vertical force is not monotonic in sinkage; no unique sinkage")
+
+    def residual(z: float) -> float:
+        return float(wheel.vertical([z])[0]) - load
+
+    span = max(high - low, 1e-12)
+    return float(brentq(residual, grid[j - 1], grid[j], xtol=1e-13 * span, rtol=1e-14, maxiter=200))
+
+
+def _contact_patch(
+    wheel: _Wheel3D, height: float, rotation: NDArray[np.float64]
+) -> tuple[float, float, float, float, float, float]:
+    """(x_min, x_max, y_min, y_max [m], entry, exit [rad]) of the loaded facets at one phase."""
+    from ..rft.rft3d import rft3d_facet_tractions
+
+    mesh = wheel.mesh
+    offsets = mesh.centroids @ rotation.T
+    velocities = wheel.linear + np.cross(wheel.angular, offsets)
+    centroids = offsets + np.array([0.0, 0.0, height])
+    xi = float(wheel.medium) if not isinstance(wheel.medium, Material) else _xi(wheel.medium)
+    friction = wheel.surface_friction
+    if friction is None and isinstance(wheel.medium, Material):
+        friction = wheel.medium.surface_friction
+    tractions = rft3d_facet_tractions(
+        centroids, mesh.normals @ rotation.T, velocities, xi=xi, surface_level=wheel.surface,
+        leading_edge=wheel.leading_edge, surface_friction=friction,
+    )  # fmt: skip
+    active = np.any(tractions != 0.0, axis=1) & (mesh.areas > 0.0)
+    if not np.any(active):
+        return (0.0,) * 6
+    rel = offsets[active]
+    angles = np.arctan2(rel[:, 0], -rel[:, 2])
+    return (
+        float(rel[:, 0].min()), float(rel[:, 0].max()), float(rel[:, 1].min()), float(rel[:, 1].max()),
+        float(angles.max()), float(angles.min()),
+    )  # fmt: skip
+
+
+def _xi(material: Material) -> float:
+    from ..rft.rft3d import agarwal2023_xi_material
+
+    return agarwal2023_xi_material(material)
+
+
+def _inputs(
+    load: float, slip: float, slip_angle: float, omega: float, phase_count: int, period: float | None
+) -> tuple[float, float, float, float, int, float]:
+    load = check_positive("load", load)
+    slip = check_range("slip", slip, -1.0, 1.0, hint="s = 1 - V_x/(omega r)")
+    slip_angle = check_finite("slip_angle", slip_angle)
+    if not abs(slip_angle) < 0.5 * math.pi:
+        raise InputError(
+            "slip_angle", slip_angle, "an angle in (-pi/2, pi/2) [rad], i.e. |slip angle| < 90 deg",
+            "the velocity must have a forward component along the heading",
+        )  # fmt: skip
+    omega = check_finite("omega", omega)
+    if not omega > 0.0:
+        raise InputError("omega", omega, "a spin rate > 0 [rad/s]", "slip is undefined when omega <= 0")
+    if isinstance(phase_count, bool) or not isinstance(phase_count, int | np.integer):
+        raise InputError("phase_count", phase_count, "an integer in [1, 4096]")
+    if not 1 <= phase_count <= 4096:
+        raise InputError("phase_count", phase_count, "an integer in [1, 4096]")
+    span = math.nan if period is None else check_range("period", period, 1e-9, 2.0 * math.pi, unit="rad")
+    return load, slip, slip_angle, omega, int(phase_count), span
+
+
+def wheel_steady_3d(
+    mesh: TriangleMesh,
+    medium: Material | float,
+    load: float,
+    slip: float,
+    *,
+    slip_angle: float = 0.0,
+    omega: float = 1.0,
+    nominal_radius: float | None = None,
+    phase_count: int = 1,
+    period: float | None = None,
+    surface_level: float = 0.0,
+    leading_edge: bool = True,
+    surface_friction: float | None = None,
+) -> WheelSteady3DResult:
+    """Steady forced-slip state of a 3D wheel in 3D RFT: the sinkage that carries the load, and the
+    forces and moments there.
+
+    Parameters
+    ----------
+    mesh : TriangleMesh
+        Closed wheel surface, body origin on the axle, axle along body y.
+    medium : Material or float
+        A medium with ``critical_density`` and ``internal_friction_angle`` (MS, MMS, LPS, CPS ship
+        both), or the 3D-RFT media scale xi [N/m^3].
+    load : float
+        Vertical load on the axle [N] (> 0).
+    slip : float
+        Longitudinal slip s = 1 - V_x / (omega r) in [-1, 1]; > 0 driving, < 0 skidding.
+    slip_angle : float
+        Angle [rad] from the heading to the axle velocity, + counter-clockwise seen from above
+        (ISO 8855; velocity towards the wheel's left); |slip_angle| < pi/2. V_y = V_x tan(slip_angle).
+    omega : float
+        Spin rate [rad/s] (> 0). Quasi-static RFT does not depend on it.
+    nominal_radius : float, optional
+        r [m] of the slip definition; default :func:`wheel_nominal_radius_3d`.
+    phase_count : int
+        Wheel angles averaged over one period (1 for an axisymmetric wheel).
+    period : float, optional
+        Wheel angle [rad] after which the mesh repeats (2 pi / lug count for a grousered wheel);
+        default detected from the mesh (:func:`wheel_period_3d`). Used only when ``phase_count`` > 1.
+    surface_level : float
+        Height of the free surface [m].
+    leading_edge : bool
+        Load only facets moving into the medium (n . v > 0).
+    surface_friction : float, optional
+        Wheel-medium friction cap [-] (default the medium's, none if it has none).
+
+    Returns
+    -------
+    WheelSteady3DResult
+
+    Raises
+    ------
+    InputError
+        A bad argument; the message names it.
+    SolverError
+        The medium cannot carry the load before the axle reaches the surface (the message gives the
+        maximum it carries), or the vertical force is not monotonic in sinkage.
+    """
+    _check_mesh(mesh)
+    load, slip, slip_angle, omega, phase_count, span = _inputs(
+        load, slip, slip_angle, omega, phase_count, period
+    )
+    radius = (
+        wheel_nominal_radius_3d(mesh)
+        if nominal_radius is None
+        else check_positive("nominal_radius", nominal_radius)
+    )
+    surface = check_finite("surface_level", surface_level)
+    if phase_count == 1:
+        span = 0.0
+    elif math.isnan(span):
+        span = wheel_period_3d(mesh)
+    vx = (1.0 - slip) * omega * radius
+    vy = vx * math.tan(slip_angle)
+    thetas = np.arange(phase_count) * span / phase_count
+    rotations = _rotations_y(thetas)
+    wheel = _Wheel3D(
+        mesh, medium, np.array([vx, vy, 0.0]), np.array([0.0, omega, 0.0]), rotations, surface,
+        bool(leading_edge), surface_friction,
+    )  # fmt: skip
+    v = mesh.vertices
+    lowest = np.min(
+        -np.sin(thetas)[:, None] * v[None, :, 0] + np.cos(thetas)[:, None] * v[None, :, 2], axis=1
+    )
+    what = f"load {load:g} N at slip {slip:g}, slip angle {math.degrees(slip_angle):g} deg"
+    z = _solve_height(wheel, load, surface, surface - float(lowest.min()), what)
+    w = wheel.wrenches([z])[0]
+    fx, fy, fz, mx, my, mz = (w[:, k] for k in range(6))
+    drive = -my
+    sink = surface - (z + lowest)
+    mean_dp, mean_drive = float(fx.mean()), float(drive.mean())
+    power = mean_drive * omega
+    x0, x1, y0, y1, entry, exit_ = _contact_patch(wheel, z, rotations[0])
+    return WheelSteady3DResult(
+        model="rft3d", slip=slip, slip_angle_rad=slip_angle, load_N=load, omega_rad_s=omega,
+        nominal_radius_m=radius, longitudinal_velocity_m_s=vx, lateral_velocity_m_s=vy,
+        sinkage_m=float(sink.mean()), axle_height_m=z - surface, drawbar_pull_N=mean_dp,
+        side_force_N=float(fy.mean()), vertical_force_N=float(fz.mean()), drive_torque_Nm=mean_drive,
+        power_W=power, tractive_efficiency=mean_dp * vx / power if power > 0 else 0.0,
+        aligning_moment_Nm=float(mz.mean()), overturning_moment_Nm=float(mx.mean()),
+        contact_x_min_m=x0, contact_x_max_m=x1, contact_y_min_m=y0, contact_y_max_m=y1,
+        contact_length_m=x1 - x0, contact_width_m=y1 - y0, entry_angle_rad=entry, exit_angle_rad=exit_,
+        drawbar_pull_min_N=float(fx.min()), drawbar_pull_max_N=float(fx.max()),
+        side_force_min_N=float(fy.min()), side_force_max_N=float(fy.max()),
+        drive_torque_min_Nm=float(drive.min()), drive_torque_max_Nm=float(drive.max()),
+        vertical_force_min_N=float(fz.min()), vertical_force_max_N=float(fz.max()),
+        sinkage_min_m=float(sink.min()), sinkage_max_m=float(sink.max()), phase_count=phase_count,
+        period_rad=span, facet_count=mesh.facet_count,
+    )  # fmt: skip
+
+
+_SWEEP_VALUES = (
+    "sinkage_m",
+    "drawbar_pull_N",
+    "side_force_N",
+    "vertical_force_N",
+    "drive_torque_Nm",
+    "power_W",
+    "aligning_moment_Nm",
+    "overturning_moment_Nm",
+    "contact_length_m",
+    "contact_width_m",
+)
+
+
+def sweep_3d(
+    mesh: TriangleMesh,
+    medium: Material | float,
+    loads: Sequence[float] | NDArray[np.float64],
+    slips: Sequence[float] | NDArray[np.float64],
+    slip_angles: Sequence[float] | NDArray[np.float64],
+    *,
+    omega: float = 1.0,
+    nominal_radius: float | None = None,
+    phase_count: int = 1,
+    period: float | None = None,
+    surface_level: float = 0.0,
+    leading_edge: bool = True,
+    surface_friction: float | None = None,
+) -> TableResult:
+    """:func:`wheel_steady_3d` over every load [N] x slip [-] x slip angle [rad].
+
+    Columns: load_N, slip, slip_angle_rad, solved, then sinkage_m, drawbar_pull_N, side_force_N,
+    vertical_force_N, drive_torque_Nm, power_W, aligning_moment_Nm, overturning_moment_Nm,
+    contact_length_m, contact_width_m. A point the medium cannot carry (:class:`SolverError`) is kept
+    with ``solved = False`` and zeros, its reason in ``metadata["failures"]``. Bad inputs raise.
+    """
+    grids = []
+    for name, values in (("loads", loads), ("slips", slips), ("slip_angles", slip_angles)):
+        arr = np.atleast_1d(np.asarray(values, dtype=np.float64))
+        if arr.ndim != 1 or arr.size == 0:
+            raise InputError(name, values, "a non-empty 1D sequence of numbers")
+        grids.append(arr)
+    rows: list[tuple[Any, ...]] = []
+    failures: list[str] = []
+    for load in grids[0]:
+        for slip in grids[1]:
+            for angle in grids[2]:
+                try:
+                    r = wheel_steady_3d(
+                        mesh, medium, float(load), float(slip), slip_angle=float(angle), omega=omega,
+                        nominal_radius=nominal_radius, phase_count=phase_count, period=period,
+                        surface_level=surface_level, leading_edge=leading_edge,
+                        surface_friction=surface_friction,
+                    )  # fmt: skip
+                    vals: tuple[Any, ...] = (True, *(getattr(r, k) for k in _SWEEP_VALUES))
+                except SolverError as exc:
+                    failures.append(str(exc))
+                    vals = (False, *([0.0] * len(_SWEEP_VALUES)))
+                rows.append((float(load), float(slip), float(angle), *vals))
+    names = ("load_N", "slip", "slip_angle_rad", "solved", *_SWEEP_VALUES)
+    cols = {k: np.asarray([row[i] for row in rows]) for i, k in enumerate(names)}
+    medium_name = medium.name if isinstance(medium, Material) else f"xi={float(medium):g} N/m^3"
+    return TableResult(
+        cols,
+        {
+            "model": "rft3d",
+            "medium": medium_name,
+            "facet_count": mesh.facet_count,
+            "omega_rad_s": omega,
+            "slip_angle_convention": "ISO 8855: velocity direction minus heading, + counter-clockwise",
+            "failures": failures,
+        },
+    )

@@ -1,0 +1,59 @@
+"""Plane-strain MPM continuum solver for dry granular media, coupled to rigid intruders and wheels.
+
+The Dunatunga-Kamrin (2015) granular model (hypoelastic Jaumann trial stress, Drucker-Prager cone with
+optional mu(I) rate dependence, stress-free below the critical density) on an explicit MPM grid
+(APIC transfer, quadratic B-splines) with rigid bodies in frictional contact. Entry points:
+:func:`run_intrusion` and :func:`run_wheel`. Submodules are imported lazily so that
+``import terradyn.mpm`` does not load numba.
+"""
+
+from __future__ import annotations
+
+from importlib import import_module
+from typing import Any
+
+__all__ = [
+    "BedGrid",
+    "BedPacking",
+    "GranularModel",
+    "IntrusionResult",
+    "MPMInstabilityError",
+    "Wall",
+    "WallKind",
+    "Walls",
+    "WheelResult",
+    "bed_stability_ratio",
+    "friction_coefficient_from_angle",
+    "read_snapshot",
+    "run_intrusion",
+    "run_wheel",
+]
+
+_WHERE = {
+    "BedGrid": "solver",
+    "MPMInstabilityError": "solver",
+    "BedPacking": "model",
+    "GranularModel": "model",
+    "Wall": "model",
+    "WallKind": "model",
+    "Walls": "model",
+    "bed_stability_ratio": "model",
+    "friction_coefficient_from_angle": "model",
+    "IntrusionResult": "runs",
+    "WheelResult": "runs",
+    "run_intrusion": "runs",
+    "run_wheel": "runs",
+    "read_snapshot": "checkpoint",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        value = getattr(import_module(f".{_WHERE[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -1,0 +1,131 @@
+"""Rigid intruders in MPM: outline segments, motion modes and the body state the kernels update.
+
+Contact model: grid nodes inside the body's (thickened) outline have their velocity relative to the
+body point projected -- no approach along the body's outward normal, Coulomb friction with the body-
+grain coefficient, free separation (:func:`terradyn.mpm._kernels.body_contact`). The impulse removed
+from the grains is the force on the body (two-way coupling). A zero-thickness :class:`Plate` is given
+a thickness of ``max(thickness, PLATE_MIN_CELLS * cell_size)``: with quadratic B-splines (support
+1.5 cells) a band thinner than about two cells lets nodes on its far half see the grains in front and
+leak them through.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from enum import Enum
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from ..geometry import Body, Plate
+
+__all__ = ["PLATE_MIN_CELLS", "BodyState", "DofMode", "body_segments", "effective_body", "lowest_point"]
+
+#: Minimum plate thickness in MPM, in cells.
+PLATE_MIN_CELLS = 3.0
+
+
+class DofMode(str, Enum):
+    """How a translational degree of freedom of the body moves."""
+
+    PRESCRIBED = "prescribed"
+    FREE = "free"
+
+
+def effective_body(body: Body, cell_size: float) -> Body:
+    """The body as MPM resolves it: plates thinner than :data:`PLATE_MIN_CELLS` cells are thickened."""
+    if not isinstance(body, Body):
+        raise InputError("body", body, "a terradyn.geometry Body (Plate, WheelCircular, ...)")
+    if isinstance(body, Plate):
+        t = max(body.thickness, PLATE_MIN_CELLS * cell_size)
+        if t >= body.length:
+            raise InputError(
+                "cell_size",
+                cell_size,
+                f"below {body.length / PLATE_MIN_CELLS:g} m for a plate of length {body.length:g} m",
+                "the MPM plate is at least two cells thick",
+            )
+        if t != body.thickness:
+            return replace(body, thickness=t)
+    return body
+
+
+def body_segments(body: Body, cell_size: float) -> NDArray[np.float64]:
+    """Outline segments (S, 4) = (x1, z1, x2, z2) [m] in the body frame, about half a cell long."""
+    loops = body.outline(min(0.5 * cell_size, body.size))
+    segs = []
+    for poly in loops:
+        p = np.asarray(poly, dtype=float)
+        if len(p) > 1 and np.allclose(p[0], p[-1]):
+            p = p[:-1]
+        q = np.roll(p, -1, axis=0)
+        segs.append(np.hstack([p, q]))
+    seg = np.vstack(segs)
+    keep = np.hypot(seg[:, 2] - seg[:, 0], seg[:, 3] - seg[:, 1]) > 0
+    return np.ascontiguousarray(seg[keep])
+
+
+def lowest_point(seg: NDArray[np.float64], pose: NDArray[np.float64]) -> float:
+    """World z [m] of the lowest outline vertex of a body at ``pose`` (x, z, theta)."""
+    c, s = math.cos(pose[2]), math.sin(pose[2])
+    z = pose[1] - s * seg[:, 0] + c * seg[:, 1]
+    return float(z.min())
+
+
+@dataclass
+class BodyState:
+    """Mutable state of a rigid body per unit out-of-plane width (kernels update the arrays in place).
+
+    Attributes
+    ----------
+    seg : (S, 4) outline segments in the body frame [m]
+    pose : (3,) x [m], z [m], theta [rad]
+    twist : (3,) vx [m/s], vz [m/s], omega [rad/s]
+    free : (2,) bool, x/z translation free (else prescribed by ``twist``)
+    mass : float  [kg/m]
+    load : (2,) external force incl. gravity on the body [N/m]
+    friction : float  body-grain Coulomb coefficient [-]
+    width : float  out-of-plane width [m] (results are per-width values times this)
+    """
+
+    seg: NDArray[np.float64]
+    pose: NDArray[np.float64]
+    twist: NDArray[np.float64]
+    free: NDArray[np.bool_]
+    mass: float
+    load: NDArray[np.float64]
+    friction: float
+    width: float
+
+    @property
+    def reach(self) -> float:
+        """Largest distance [m] of the outline from the body origin."""
+        return float(np.max(np.hypot(self.seg[:, :2][:, 0], self.seg[:, :2][:, 1])))
+
+    @classmethod
+    def empty(cls) -> BodyState:
+        """A placeholder for runs without a body (bed preparation)."""
+        return cls(
+            seg=np.zeros((1, 4)),
+            pose=np.zeros(3),
+            twist=np.zeros(3),
+            free=np.zeros(2, dtype=np.bool_),
+            mass=1.0,
+            load=np.zeros(2),
+            friction=0.0,
+            width=1.0,
+        )
+
+    def copy(self) -> BodyState:
+        return BodyState(
+            self.seg.copy(),
+            self.pose.copy(),
+            self.twist.copy(),
+            self.free.copy(),
+            self.mass,
+            self.load.copy(),
+            self.friction,
+            self.width,
+        )

@@ -1,0 +1,258 @@
+"""MPM configuration: the granular model from a :class:`~terradyn.materials.Material`, walls, bed, solver.
+
+Friction mapping
+----------------
+terradyn matches the Drucker-Prager cone ``tau <= mu p`` to cohesionless Mohr-Coulomb in plane strain:
+at isochoric plastic flow the out-of-plane deviatoric stress vanishes, so ``tau`` is the in-plane
+maximum shear ``(sigma_1 - sigma_3)/2`` and ``p = (sigma_1 + sigma_3)/2``, giving **mu = sin(phi)**
+(:func:`friction_coefficient_from_angle`). The shipped media TOMLs store ``friction_coefficient`` with
+this mapping from their friction angle. (``mu = tan(phi)`` is a common alternative; it corresponds to a
+plane-strain angle ``asin(tan(phi))``.)
+
+Bed stability
+-------------
+An elastically settled bed under uniaxial strain has ``sigma_h = nu/(1-nu) sigma_v`` (also out of
+plane), so ``tau/p = sqrt(3)(1 - 2 nu)/(1 + nu)``. If ``mu_s`` is below that ratio the bed yields under
+gravity alone; :func:`bed_stability_ratio` gives it and :meth:`GranularModel.check_bed_stability` raises.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields, replace
+from enum import Enum
+
+from ..errors import InputError, check_positive, check_range
+from ..materials import Material
+
+__all__ = [
+    "BedPacking",
+    "GranularModel",
+    "Wall",
+    "WallKind",
+    "Walls",
+    "bed_stability_ratio",
+    "friction_coefficient_from_angle",
+]
+
+
+def friction_coefficient_from_angle(friction_angle: float) -> float:
+    """Plane-strain Drucker-Prager slope matching Mohr-Coulomb: ``mu = sin(phi)`` (phi [rad])."""
+    check_range("friction_angle", friction_angle, 0.0, math.radians(89.0), unit="rad")
+    return math.sin(friction_angle)
+
+
+def bed_stability_ratio(poisson_ratio: float) -> float:
+    """``tau/p`` of a bed settled elastically under uniaxial strain: sqrt(3)(1 - 2 nu)/(1 + nu) [-]."""
+    return math.sqrt(3.0) * (1.0 - 2.0 * poisson_ratio) / (1.0 + poisson_ratio)
+
+
+class WallKind(str, Enum):
+    """Boundary condition of a box wall on the grains."""
+
+    FREE_SLIP = "free-slip"
+    NO_SLIP = "no-slip"
+    FRICTIONAL = "frictional"
+
+
+@dataclass(frozen=True, slots=True)
+class Wall:
+    """One wall: ``kind`` and, for :attr:`WallKind.FRICTIONAL`, the Coulomb ``friction`` [-]."""
+
+    kind: WallKind = WallKind.FREE_SLIP
+    friction: float = 0.0
+
+    def __post_init__(self) -> None:
+        try:
+            object.__setattr__(self, "kind", WallKind(self.kind))
+        except ValueError:
+            raise InputError("wall.kind", self.kind, f"one of {[k.value for k in WallKind]}") from None
+        check_range("wall.friction", self.friction, 0.0, 2.0)
+
+    @property
+    def code(self) -> int:
+        return {WallKind.FREE_SLIP: 0, WallKind.NO_SLIP: 1, WallKind.FRICTIONAL: 2}[self.kind]
+
+
+@dataclass(frozen=True, slots=True)
+class Walls:
+    """The three walls of the bed box (the top is open)."""
+
+    left: Wall = field(default_factory=Wall)
+    right: Wall = field(default_factory=Wall)
+    bottom: Wall = field(default_factory=Wall)
+
+    @classmethod
+    def coerce(cls, walls: Walls | Wall | WallKind | str | None) -> Walls:
+        """Accept a :class:`Walls`, one :class:`Wall`/kind for all sides, or None (free-slip)."""
+        if walls is None:
+            return cls()
+        if isinstance(walls, Walls):
+            return walls
+        if isinstance(walls, Wall):
+            return cls(walls, walls, walls)
+        if isinstance(walls, str | WallKind):
+            w = Wall(WallKind(walls) if walls in {k.value for k in WallKind} else walls)  # type: ignore[arg-type]
+            return cls(w, w, w)
+        raise InputError("walls", walls, "a Walls, a Wall or one of 'free-slip', 'no-slip', 'frictional'")
+
+
+class BedPacking(str, Enum):
+    """Initial packing of the bed relative to the critical density.
+
+    CONSOLIDATED: density above critical with a geostatic stress (immediate frictional resistance).
+    UNCONSOLIDATED: density just below critical and stress-free; it compacts under gravity while settling.
+    """
+
+    CONSOLIDATED = "consolidated"
+    UNCONSOLIDATED = "unconsolidated"
+
+
+@dataclass(frozen=True, slots=True)
+class GranularModel:
+    """Parameters of the Dunatunga-Kamrin model in SI (see module doc for the mu mapping).
+
+    Attributes
+    ----------
+    youngs_modulus : float  E [Pa]
+    poisson_ratio : float  nu [-]
+    friction_coefficient : float  mu_s [-]
+    friction_coefficient_2 : float  mu_2 [-] (= mu_s: rate-independent)
+    inertial_number_0 : float  I_0 [-]
+    grain_diameter : float  d [m]
+    grain_density : float  rho_s [kg/m^3]
+    critical_density : float  rho_c [kg/m^3]
+    bulk_density : float  nominal bed density [kg/m^3]
+    surface_friction : float  body-grain Coulomb friction [-]
+    """
+
+    youngs_modulus: float
+    poisson_ratio: float
+    friction_coefficient: float
+    friction_coefficient_2: float
+    inertial_number_0: float
+    grain_diameter: float
+    grain_density: float
+    critical_density: float
+    bulk_density: float
+    surface_friction: float
+
+    def __post_init__(self) -> None:
+        check_positive("youngs_modulus", self.youngs_modulus)
+        check_range("poisson_ratio", self.poisson_ratio, 0.0, 0.49)
+        check_range("friction_coefficient", self.friction_coefficient, 0.0, 2.0)
+        check_range("friction_coefficient_2", self.friction_coefficient_2, self.friction_coefficient, 4.0)
+        check_positive("inertial_number_0", self.inertial_number_0)
+        check_positive("grain_diameter", self.grain_diameter)
+        check_range("grain_density", self.grain_density, 1.0, 25000.0, unit="kg/m^3")
+        check_range("critical_density", self.critical_density, 1.0, self.grain_density, unit="kg/m^3")
+        check_range("bulk_density", self.bulk_density, 1.0, self.grain_density, unit="kg/m^3")
+        check_range("surface_friction", self.surface_friction, 0.0, 2.0)
+
+    @classmethod
+    def from_material(
+        cls,
+        material: Material,
+        *,
+        youngs_modulus: float | None = None,
+        poisson_ratio: float | None = None,
+        friction_coefficient: float | None = None,
+        surface_friction: float | None = None,
+        rate_dependent: bool = False,
+    ) -> GranularModel:
+        """Model of a medium; keyword overrides replace single parameters.
+
+        With ``rate_dependent=False`` (default) mu_2 is set to mu_s (constant friction, the RFT-comparison
+        model); ``True`` keeps the material's mu(I) parameters. Missing densities fall back as follows:
+        critical = bulk, grain = bulk / 0.6.
+        """
+        if not isinstance(material, Material):
+            raise InputError("material", material, "a terradyn Material (materials.get(name))")
+        c = material.require_continuum()
+        bulk = material.bulk_density or material.critical_density
+        if bulk is None:
+            raise InputError(
+                f"material {material.name!r}.bulk_density", None, "a bulk or critical density for MPM"
+            )
+        crit = material.critical_density or bulk
+        grain = material.grain_density or max(bulk, crit) / 0.6
+        mu_s = c.friction_coefficient if friction_coefficient is None else friction_coefficient
+        mu_2 = max(c.friction_coefficient_2, mu_s) if rate_dependent else mu_s
+        return cls(
+            youngs_modulus=c.youngs_modulus if youngs_modulus is None else youngs_modulus,
+            poisson_ratio=c.poisson_ratio if poisson_ratio is None else poisson_ratio,
+            friction_coefficient=mu_s,
+            friction_coefficient_2=mu_2,
+            inertial_number_0=c.inertial_number_0,
+            grain_diameter=c.grain_diameter,
+            grain_density=grain,
+            critical_density=crit,
+            bulk_density=bulk,
+            surface_friction=c.surface_friction if surface_friction is None else surface_friction,
+        )
+
+    def with_changes(self, **changes: float) -> GranularModel:
+        """A validated copy with some parameters replaced."""
+        known = {f.name for f in fields(self)}
+        for key in changes:
+            if key not in known:
+                raise InputError("granular model field", key, f"one of {sorted(known)}")
+        return replace(self, **changes)
+
+    @property
+    def shear_modulus(self) -> float:
+        """G = E / (2 (1 + nu)) [Pa]."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+    @property
+    def bulk_modulus(self) -> float:
+        """K = E / (3 (1 - 2 nu)) [Pa]."""
+        return self.youngs_modulus / (3.0 * (1.0 - 2.0 * self.poisson_ratio))
+
+    @property
+    def lame_lambda(self) -> float:
+        """lambda = K - 2G/3 [Pa]."""
+        return self.bulk_modulus - 2.0 * self.shear_modulus / 3.0
+
+    @property
+    def earth_pressure_at_rest(self) -> float:
+        """K_0 = nu / (1 - nu) [-], the elastic uniaxial-strain stress ratio used for geostatic stress."""
+        return self.poisson_ratio / (1.0 - self.poisson_ratio)
+
+    @property
+    def friction_angle(self) -> float:
+        """Plane-strain Mohr-Coulomb angle of the cone, asin(mu_s) [rad]."""
+        return math.asin(min(1.0, self.friction_coefficient))
+
+    def wave_speed(self, density: float | None = None) -> float:
+        """P-wave speed sqrt((K + 4G/3)/rho) [m/s] at ``density`` (default: critical density)."""
+        rho = self.critical_density if density is None else density
+        return math.sqrt((self.bulk_modulus + 4.0 * self.shear_modulus / 3.0) / rho)
+
+    def check_bed_stability(self) -> None:
+        """Raise :class:`InputError` if a resting bed would yield under gravity (mu_s too small for nu)."""
+        need = bed_stability_ratio(self.poisson_ratio)
+        if self.friction_coefficient <= need:
+            raise InputError(
+                "friction_coefficient",
+                self.friction_coefficient,
+                f"a value above sqrt(3)(1-2nu)/(1+nu) = {need:.3f} for nu = {self.poisson_ratio}",
+                "raise poisson_ratio or the bed creeps under its own weight",
+            )
+
+    def as_kernel_array(self):  # -> NDArray
+        """(G, lambda, mu_s, mu_2, I_0, d, rho_s, rho_c) for :func:`terradyn.mpm._kernels.advance`."""
+        import numpy as np
+
+        return np.array(
+            [
+                self.shear_modulus,
+                self.lame_lambda,
+                self.friction_coefficient,
+                self.friction_coefficient_2,
+                self.inertial_number_0,
+                self.grain_diameter,
+                self.grain_density,
+                self.critical_density,
+            ]
+        )

@@ -1,0 +1,434 @@
+"""MPM orchestration: the grid and bed, the stable time step, and a phase runner around the kernels.
+
+Nothing here computes physics per particle; it sizes arrays, chooses ``dt``, calls
+:func:`terradyn.mpm._kernels.advance` in chunks of steps, checks each chunk for instability, records
+the force on the body, and writes snapshots and checkpoints.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numba
+import numpy as np
+
+from ..errors import InputError, SolverError, check_positive, check_range
+from . import _kernels as K
+from .bodies import BodyState
+from .checkpoint import load_checkpoint, save_checkpoint, write_snapshot
+from .model import BedPacking, GranularModel, Walls
+
+__all__ = [
+    "GRID_PAD",
+    "BedGrid",
+    "MPMInstabilityError",
+    "ParticleState",
+    "Phase",
+    "Runner",
+    "make_bed",
+    "stable_time_step",
+]
+
+#: Grid nodes outside each wall (the quadratic B-spline stencil reaches 1.5 cells).
+GRID_PAD = 2
+#: Largest allowed CFL number (c + |v|) dt / h checked at run time.
+CFL_LIMIT = 0.6
+#: Below this many particles the step loop runs on one thread: the parallel regions of a step cost
+#: more than they save, and far more when other processes compete for the cores.
+PARALLEL_MIN_PARTICLES = 40_000
+
+ProgressCallback = Callable[[float, float], None]
+
+
+class MPMInstabilityError(SolverError):
+    """The MPM run became unstable (NaN, CFL violation or runaway kinetic energy)."""
+
+
+@dataclass(frozen=True, slots=True)
+class BedGrid:
+    """A box of grains: bed ``width`` x ``depth`` [m] with its free surface at z = 0, and the grid over it.
+
+    The left wall is at ``x_left`` [m]; ``air`` [m] of empty grid lies above the surface. Nodes are
+    ``cell_size`` [m] apart with :data:`GRID_PAD` nodes outside each wall.
+    """
+
+    width: float
+    depth: float
+    air: float
+    cell_size: float
+    x_left: float = 0.0
+    walls: Walls = field(default_factory=Walls)
+
+    def __post_init__(self) -> None:
+        check_positive("cell_size", self.cell_size)
+        check_positive("bed_width", self.width)
+        check_positive("bed_depth", self.depth)
+        check_positive("air_height", self.air, allow_zero=True)
+        for name, value in (("bed_width", self.width), ("bed_depth", self.depth)):
+            if value < 4 * self.cell_size:
+                raise InputError(
+                    name, value, f"at least 4 cells ({4 * self.cell_size:g} m)", "refine cell_size"
+                )
+        cells = (self.width / self.cell_size) * ((self.depth + self.air) / self.cell_size)
+        if cells > 2.0e7:
+            raise InputError("cell_size", self.cell_size, "a grid below 2e7 cells", "coarsen cell_size")
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        nx = round(self.width / self.cell_size) + 2 * GRID_PAD + 1
+        nz = round((self.depth + self.air) / self.cell_size) + 2 * GRID_PAD + 3
+        return nx, nz
+
+    @property
+    def origin(self) -> tuple[float, float]:
+        """World (x, z) [m] of node (0, 0)."""
+        return self.x_left - GRID_PAD * self.cell_size, -self.depth - GRID_PAD * self.cell_size
+
+    @property
+    def x_right(self) -> float:
+        return self.x_left + (self.shape[0] - 1 - 2 * GRID_PAD) * self.cell_size
+
+    @property
+    def bounds(self) -> np.ndarray:
+        """(x_min, x_max, z_min, z_max) [m] that particles are kept within."""
+        nz = self.shape[1]
+        z_top = self.origin[1] + (nz - 1 - GRID_PAD) * self.cell_size
+        return np.array([self.x_left, self.x_right, -self.depth, z_top])
+
+
+@dataclass
+class ParticleState:
+    """Material points per unit out-of-plane width (see :mod:`terradyn.mpm._kernels` for shapes/units)."""
+
+    pos: np.ndarray
+    vel: np.ndarray
+    aff: np.ndarray
+    stress: np.ndarray
+    mass: np.ndarray
+    vol: np.ndarray
+    gdot: np.ndarray
+
+    NAMES = ("pos", "vel", "aff", "stress", "mass", "vol", "gdot")
+
+    def __len__(self) -> int:
+        return self.pos.shape[0]
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        return {f"p_{k}": getattr(self, k) for k in self.NAMES}
+
+    @classmethod
+    def from_arrays(cls, data: dict[str, np.ndarray]) -> ParticleState:
+        return cls(**{k: np.ascontiguousarray(data[f"p_{k}"]) for k in cls.NAMES})
+
+    def fields(self) -> dict[str, np.ndarray]:
+        """Per-particle output fields (unit names as in :func:`~terradyn.mpm.checkpoint.write_snapshot`)."""
+        s = self.stress
+        return {
+            "x": self.pos[:, 0],
+            "z": self.pos[:, 1],
+            "vx": self.vel[:, 0],
+            "vz": self.vel[:, 1],
+            "stress_xx": s[:, 0],
+            "stress_zz": s[:, 1],
+            "stress_xz": s[:, 2],
+            "stress_yy": s[:, 3],
+            "pressure": -(s[:, 0] + s[:, 1] + s[:, 3]) / 3.0,
+            "density": self.mass / self.vol,
+            "plastic_shear_rate": self.gdot,
+        }
+
+
+def make_bed(
+    model: GranularModel,
+    grid: BedGrid,
+    *,
+    packing: BedPacking = BedPacking.CONSOLIDATED,
+    density: float | None = None,
+    particles_per_cell: int = 2,
+    gravity: float = 9.81,
+) -> ParticleState:
+    """Fill the bed with ``particles_per_cell`` x ``particles_per_cell`` points per cell.
+
+    Consolidated: density ``density`` (default ``max(bulk, 1.02 critical)``) and a geostatic stress
+    ``sigma_zz = -rho g (0 - z)``, ``sigma_xx = sigma_yy = K_0 sigma_zz`` with ``K_0 = nu/(1 - nu)`` (the
+    elastic equilibrium of a laterally confined layer). Unconsolidated: density (default
+    ``0.98 critical``) at or below critical and no stress.
+    """
+    packing = BedPacking(packing)
+    ppc = int(particles_per_cell)
+    if ppc < 1 or ppc > 4:
+        raise InputError("particles_per_cell", particles_per_cell, "1, 2, 3 or 4 per direction")
+    rc = model.critical_density
+    if packing is BedPacking.CONSOLIDATED:
+        rho = max(model.bulk_density, 1.02 * rc) if density is None else density
+        check_range(
+            "bed_density",
+            rho,
+            rc * (1.0 + 1e-9),
+            model.grain_density,
+            unit="kg/m^3",
+            hint="a consolidated bed is denser than the critical density",
+        )
+    else:
+        rho = 0.98 * rc if density is None else density
+        check_range(
+            "bed_density",
+            rho,
+            0.5 * rc,
+            rc,
+            unit="kg/m^3",
+            hint="an unconsolidated bed is at or below the critical density",
+        )
+    h = grid.cell_size
+    ncx = round(grid.width / h)
+    ncz = round(grid.depth / h)
+    off = (np.arange(ppc) + 0.5) / ppc
+    cx = (np.arange(ncx)[:, None] + off[None, :]).ravel() * h + grid.x_left
+    cz = (np.arange(ncz)[:, None] + off[None, :]).ravel() * h - grid.depth
+    zz, xx = np.meshgrid(cz, cx, indexing="ij")  # rows of constant z
+    pos = np.ascontiguousarray(np.stack([xx.ravel(), zz.ravel()], axis=1))
+    n = len(pos)
+    vol = np.full(n, (h / ppc) ** 2)
+    stress = np.zeros((n, 4))
+    if packing is BedPacking.CONSOLIDATED:
+        szz = rho * gravity * pos[:, 1]
+        k0 = model.earth_pressure_at_rest
+        stress[:, 0] = k0 * szz
+        stress[:, 1] = szz
+        stress[:, 3] = k0 * szz
+    return ParticleState(
+        pos=pos,
+        vel=np.zeros((n, 2)),
+        aff=np.zeros((n, 2, 2)),
+        stress=stress,
+        mass=vol * rho,
+        vol=vol,
+        gdot=np.zeros(n),
+    )
+
+
+def stable_time_step(
+    model: GranularModel, cell_size: float, *, cfl: float = 0.3, speed: float = 0.0
+) -> float:
+    """``dt = cfl h / (c_p + speed)`` [s] with c_p the P-wave speed at the critical density [m/s]."""
+    check_range("cfl", cfl, 1e-3, 0.5)
+    check_positive("cell_size", cell_size)
+    return cfl * cell_size / (model.wave_speed() + abs(speed))
+
+
+@dataclass(frozen=True, slots=True)
+class Phase:
+    """A stretch of the run: ``n_steps`` with grid ``damping`` [1/s]; at its start the body gets
+    ``twist`` (vx, vz, omega) and ``free`` (x, z) flags (None: keep)."""
+
+    name: str
+    n_steps: int
+    damping: float = 0.0
+    twist: tuple[float, float, float] | None = None
+    free: tuple[bool, bool] | None = None
+
+
+@dataclass
+class Runner:
+    """Advances particles and one body through a list of phases; records, checks, saves.
+
+    ``record_every`` steps form one recorded row (forces averaged over those steps). Output paths are
+    optional; ``checkpoint_interval`` is wall-clock seconds between checkpoints.
+    """
+
+    model: GranularModel
+    grid: BedGrid
+    particles: ParticleState
+    body: BodyState
+    dt: float
+    phases: list[Phase]
+    gravity: float = 9.81
+    record_every: int = 50
+    has_body: bool = True
+    reference_speed: float = 0.0
+    fingerprint: str = ""
+    checkpoint_path: Path | None = None
+    checkpoint_interval: float = 600.0
+    snapshot_dir: Path | None = None
+    snapshot_every: int = 0
+    progress: ProgressCallback | None = None
+    step: int = 0
+    rows: list[list[float]] = field(default_factory=list)
+    _last_checkpoint: float = field(default=0.0, repr=False)
+
+    ROW = (
+        "phase",
+        "step",
+        "time_s",
+        "x_m",
+        "z_m",
+        "theta_rad",
+        "vx_m_s",
+        "vz_m_s",
+        "omega_rad_s",
+        "fx_per_width",
+        "fz_per_width",
+        "ty_per_width",
+    )
+
+    @property
+    def total_steps(self) -> int:
+        return sum(p.n_steps for p in self.phases)
+
+    def resume(self) -> bool:
+        """Load the checkpoint if it exists; returns True if the run continues from it."""
+        if self.checkpoint_path is None or not self.checkpoint_path.exists():
+            return False
+        data = load_checkpoint(self.checkpoint_path, self.fingerprint)
+        self.particles = ParticleState.from_arrays(data)
+        self.body.pose[:] = data["b_pose"]
+        self.body.twist[:] = data["b_twist"]
+        self.body.free[:] = data["b_free"]
+        self.step = int(data["step"])
+        self.rows = [list(r) for r in data["rows"]]
+        return True
+
+    def save_checkpoint(self) -> None:
+        if self.checkpoint_path is None:
+            return
+        arrays = self.particles.arrays()
+        arrays.update(
+            b_pose=self.body.pose,
+            b_twist=self.body.twist,
+            b_free=self.body.free,
+            step=np.array(self.step),
+            rows=np.array(self.rows, dtype=float).reshape(-1, len(self.ROW)),
+        )
+        save_checkpoint(self.checkpoint_path, arrays, self.fingerprint)
+        self._last_checkpoint = time.monotonic()
+
+    def run(self) -> None:
+        """Run all phases from the current step to the end."""
+        nx, nz = self.grid.shape
+        self._grid = (np.zeros((nx, nz)), np.zeros((nx, nz, 2)))
+        self._buf = K.make_buffer(nx, nz, len(self.particles))
+        self._last_checkpoint = time.monotonic()
+        start = 0
+        for index, phase in enumerate(self.phases):
+            stop = start + phase.n_steps
+            if self.step == start:
+                if phase.twist is not None:
+                    self.body.twist[:] = phase.twist
+                if phase.free is not None:
+                    self.body.free[:] = phase.free
+            while start <= self.step < stop:
+                n = min(self.record_every, stop - self.step)
+                self._chunk(index, phase, n)
+            start = stop
+        self.save_checkpoint()
+
+    def _chunk(self, index: int, phase: Phase, n: int) -> None:
+        p, b = self.particles, self.body
+        forces = np.zeros((n, 3))
+        threads = numba.get_num_threads()
+        if len(p) < PARALLEL_MIN_PARTICLES:
+            numba.set_num_threads(1)
+        try:
+            self._advance(n, phase.damping, forces)
+        finally:
+            numba.set_num_threads(threads)
+        self.step += n
+        self._check(n)
+        f = forces.mean(axis=0)
+        t = self.step * self.dt
+        self.rows.append([index, self.step, t, *b.pose, *b.twist, *f])
+        if self.snapshot_dir is not None and self.snapshot_every > 0:
+            if (self.step // self.record_every) % self.snapshot_every == 0:
+                self.write_snapshot()
+        if self.checkpoint_path is not None:
+            if time.monotonic() - self._last_checkpoint >= self.checkpoint_interval:
+                self.save_checkpoint()
+        if self.progress is not None:
+            self.progress(t, self.step / max(1, self.total_steps))
+
+    def _advance(self, n: int, damping: float, forces: np.ndarray) -> None:
+        p, b, (gm, gv) = self.particles, self.body, self._grid
+        x0, z0 = self.grid.origin
+        walls = self.grid.walls
+        kinds = np.array([walls.left.code, walls.right.code, walls.bottom.code], dtype=np.int64)
+        mus = np.array([walls.left.friction, walls.right.friction, walls.bottom.friction])
+        K.advance(
+            n,
+            p.pos,
+            p.vel,
+            p.aff,
+            p.stress,
+            p.mass,
+            p.vol,
+            p.gdot,
+            self._buf,
+            gm,
+            gv,
+            x0,
+            z0,
+            self.grid.cell_size,
+            self.dt,
+            self.gravity,
+            damping,
+            GRID_PAD,
+            kinds,
+            mus,
+            self.grid.bounds,
+            self.model.as_kernel_array(),
+            self.has_body,
+            b.seg,
+            b.pose,
+            b.twist,
+            b.mass,
+            b.free,
+            b.load,
+            b.reach + 2.0 * self.grid.cell_size,
+            b.friction,
+            forces,
+        )
+
+    def write_snapshot(self) -> Path | None:
+        if self.snapshot_dir is None:
+            return None
+        path = self.snapshot_dir / f"particles_{self.step:09d}.nc"
+        attrs = {
+            "time_s": self.step * self.dt,
+            "step": self.step,
+            "body_x_m": self.body.pose[0],
+            "body_z_m": self.body.pose[1],
+            "body_theta_rad": self.body.pose[2],
+            "per_unit_width": "mass and volume are per metre of out-of-plane width",
+        }
+        return write_snapshot(path, self.particles.fields(), attrs)
+
+    def _check(self, n: int) -> None:
+        """Raise :class:`MPMInstabilityError` on NaN, a CFL violation or runaway kinetic energy."""
+        p, h, t = self.particles, self.grid.cell_size, self.step * self.dt
+        where = f"at t = {t:.4g} s (step {self.step})"
+        keep = f"; last good checkpoint kept at {self.checkpoint_path}" if self.checkpoint_path else ""
+        if not (
+            np.isfinite(p.vel).all() and np.isfinite(p.stress).all() and np.isfinite(self.body.pose).all()
+        ):
+            raise MPMInstabilityError(f"MPM run produced NaN/inf {where}{keep}; reduce cfl or cell_size")
+        vmax = float(np.sqrt((p.vel**2).sum(axis=1).max()))
+        cfl = (self.model.wave_speed() + vmax) * self.dt / h
+        if cfl > CFL_LIMIT:
+            raise MPMInstabilityError(
+                f"CFL violation {where}: (c + |v|max) dt / h = {cfl:.3f} > {CFL_LIMIT} "
+                f"(|v|max = {vmax:.3g} m/s){keep}; reduce cfl"
+            )
+        v_ref = self.reference_speed + math.sqrt(self.gravity * self.grid.depth)
+        ke = 0.5 * float(np.sum(p.mass * (p.vel**2).sum(axis=1))) / float(np.sum(p.mass))
+        if ke > 50.0 * v_ref**2:
+            raise MPMInstabilityError(
+                f"runaway kinetic energy {where}: mean v^2/2 = {ke:.3g} m^2/s^2 > {50 * v_ref**2:.3g}{keep}"
+            )
+
+    def table(self) -> dict[str, np.ndarray]:
+        """Recorded rows as columns (forces still per unit width)."""
+        arr = np.array(self.rows, dtype=float).reshape(-1, len(self.ROW))
+        return {name: arr[:, k] for k, name in enumerate(self.ROW)}
