@@ -160,3 +160,67 @@ def test_study_high_speed_reduced(run_cli, tmp_path):
     assert rec["omega_onset_rad_s"] > 0
     assert 0.2 < rec["omega_onset_normalised"] < 2.0
     assert (tmp_path / "hs" / "high_speed.csv").exists()
+
+
+def test_wheel_steady_rft3d_primitive_and_mesh(run_cli, tmp_path):
+    pytest.importorskip("trimesh")
+    from terradyn.geometry3d import save_mesh, wheel_cylinder
+
+    code, out, err = run_cli(
+        "wheel",
+        "steady",
+        "--model",
+        "rft3d",
+        "--radius",
+        "0.13",
+        "--width",
+        "0.16",
+        "--load",
+        "130",
+        "--slip",
+        "0.3",
+        "--slip-angle",
+        "10",
+        "--format",
+        "json",
+    )
+    assert code == 0, err
+    rec = json.loads(out)
+    assert rec["vertical_force_N"] == pytest.approx(130.0, rel=1e-6)
+    assert rec["side_force_N"] < 0 and "aligning_moment_Nm" in rec
+    _, out0, _ = run_cli(
+        "wheel", "steady", "--model", "rft3d", "--load", "130", "--slip", "0.3", "--format", "json"
+    )
+    assert abs(json.loads(out0)["side_force_N"]) < 1e-6 * 130
+    stl = tmp_path / "w.stl"
+    save_mesh(wheel_cylinder(0.13, 0.16, circumferential_resolution=120, axial_resolution=2), stl)
+    code, out, err = run_cli(
+        "wheel",
+        "steady",
+        "--model",
+        "rft3d",
+        "--mesh",
+        str(stl),
+        "--load",
+        "130",
+        "--slip",
+        "0.3",
+        "--format",
+        "json",
+    )
+    assert code == 0, err
+    code, _, err = run_cli(
+        "wheel",
+        "steady",
+        "--model",
+        "rft3d",
+        "--mesh",
+        str(tmp_path / "no.stl"),
+        "--load",
+        "130",
+        "--slip",
+        "0.3",
+    )
+    assert code == 2 and "no.stl" in err
+    code, _, err = run_cli("wheel", "steady", "--load", "130", "--slip", "0.3", "--slip-angle", "5")
+    assert code == 2 and "rft3d" in err

@@ -134,12 +134,20 @@ def steady(
     c1: float = WongReeceOptions.c1,
     c2: float = WongReeceOptions.c2,
     exit_angle: float = WongReeceOptions.exit_angle,
+    mesh: Path | None = typer.Option(None, "--mesh", help="Wheel mesh (STL/OBJ/PLY) for --model rft3d."),
+    slip_angle: float = typer.Option(0.0, "--slip-angle", help="Slip angle [deg] for --model rft3d."),
     fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
     out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
     plot: Path | None = typer.Option(None, "--plot", help="Wheel with traction arrows (RFT)."),
 ) -> None:
     """Sinkage, drawbar pull, drive torque and power of a wheel at a load and slip."""
     from ..locomotion import wheel_steady
+
+    if model.strip().lower() == "rft3d":
+        _steady_3d(locals())
+        return
+    if mesh is not None or slip_angle != 0.0:
+        raise InputError("--mesh/--slip-angle", str(mesh or slip_angle), "only with --model rft3d")
 
     body = wheel_body(shape, width, _shape_flags(shape, locals()))
     mat = materials.get(material)
@@ -379,3 +387,47 @@ def _atomic_save(res: Any, path: Path) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def _steady_3d(v: dict[str, Any]) -> None:
+    """``wheel steady --model rft3d``: 3D RFT on a mesh or a primitive wheel, with a slip angle."""
+    from ..geometry3d import load_mesh, wheel_cylinder, wheel_grousered
+    from ..locomotion.steady3d import steady3d_record, wheel_steady_3d
+
+    if v["plot"] is not None:
+        raise InputError("--plot", str(v["plot"]), "a plane model (--model rft)")
+    shape, radius, width = v["shape"], v["radius"], v["width"]
+    phases = 1
+    if v["mesh"] is not None:
+        wheel = load_mesh(v["mesh"])
+        phases = v["phases"]
+    elif shape is WheelShape.circular:
+        if radius is None:
+            raise InputError("--radius", None, "a radius [m] (or --mesh)")
+        wheel = wheel_cylinder(radius, width, circumferential_resolution=360, axial_resolution=2)
+    elif shape is WheelShape.grousered:
+        for flag in ("grouser_count", "grouser_height", "grouser_thickness"):
+            if v[flag] is None:
+                raise InputError(f"--{flag.replace('_', '-')}", None, "a value (required for grousered)")
+        wheel = wheel_grousered(
+            radius,
+            width,
+            grouser_count=v["grouser_count"],
+            grouser_height=v["grouser_height"],
+            grouser_thickness=v["grouser_thickness"],
+            circumferential_resolution=360,
+            axial_resolution=2,
+        )
+        phases = v["phases"]
+    else:
+        raise InputError("--shape", shape.value, "circular or grousered for rft3d (or --mesh FILE)")
+    res = wheel_steady_3d(
+        wheel,
+        materials.get(v["material"]),
+        v["load"],
+        v["slip"],
+        slip_angle=math.radians(check_finite("--slip-angle", v["slip_angle"])),
+        omega=v["omega"],
+        phase_count=phases,
+    )
+    emit(steady3d_record(res), v["fmt"], v["out"])

@@ -15,14 +15,21 @@ def __getattr__(name: str) -> object:
         from . import dynamics
 
         return getattr(dynamics, name)
+    if name in ("wheel_steady_3d", "sweep_3d", "WheelSteady3DResult"):
+        from . import steady3d
+
+        return getattr(steady3d, name)
     raise AttributeError(name)
 
 __all__ = [
     "WheelDynamicsResult",
+    "WheelSteady3DResult",
     "WheelSteadyResult",
     "force_slip_sweep",
     "simulate_wheel",
     "stable_time_step",
+    "sweep_3d",
+    "wheel_steady_3d",
     "wheel_nominal_radius",
     "wheel_self_propelled",
     "wheel_steady",
