@@ -29,8 +29,8 @@ __all__ = [
     "simulate_wheel",
     "stable_time_step",
     "sweep_3d",
-    "wheel_steady_3d",
     "wheel_nominal_radius",
     "wheel_self_propelled",
     "wheel_steady",
+    "wheel_steady_3d",
 ]
