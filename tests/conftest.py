@@ -6,6 +6,12 @@ import os
 
 import matplotlib
 import pytest
+from hypothesis import settings
+
+# Deterministic property tests by default (reproducible CI); explore with HYPOTHESIS_PROFILE=explore.
+settings.register_profile("ci", derandomize=True)
+settings.register_profile("explore", max_examples=500)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 matplotlib.use("Agg")
 os.environ.setdefault("CI", "1")

@@ -14,6 +14,8 @@ import math
 import numba as nb
 import numpy as np
 
+from .li2013 import MIN_SPEED
+
 __all__ = ["rft_wrench_kernel", "rft_wrench_many_kernel", "rft_wrench_phases_kernel"]
 
 
@@ -57,11 +59,14 @@ def rft_wrench_kernel(
         ez = vz - omega * rx
         nx = c * nrm[i, 0] + s * nrm[i, 1]
         nz = -s * nrm[i, 0] + c * nrm[i, 1]
-        if nx * ex + nz * ez <= 0.0:
+        # Speeds below MIN_SPEED count as rest (the direction of motion is undefined there).
+        big = max(abs(ex), abs(ez))
+        if big < MIN_SPEED or nx * ex + nz * ez <= 0.0:
             continue
-        inv = 1.0 / math.sqrt(ex * ex + ez * ez)
-        cg = ex * inv
-        sg = -ez * inv
+        ux, uz = ex / big, ez / big
+        inv = 1.0 / math.sqrt(ux * ux + uz * uz)
+        cg = ux * inv
+        sg = -uz * inv
         c2b = nz * nz - nx * nx
         s2b = -2.0 * nx * nz
         az = a00 + a10 * c2b + b01 * sg + b11 * (s2b * cg + c2b * sg) + bm11 * (c2b * sg - s2b * cg)

@@ -31,6 +31,8 @@ import math
 import numba as nb
 import numpy as np
 
+from .li2013 import MIN_SPEED
+
 __all__ = [
     "SPLIT_TIE",
     "body_angles_kernel",
@@ -73,9 +75,14 @@ def _element_force(coeffs, nx, nz, ex, ez, vn, depth, length, width, scale, lam_
     """(F_x, F_z) [N] of one active element (the arithmetic of the RFT kernel, plus inertia)."""
     a00, a10, b01, b11, bm11 = coeffs[0], coeffs[1], coeffs[2], coeffs[3], coeffs[4]
     c01, c11, cm11, d10 = coeffs[5], coeffs[6], coeffs[7], coeffs[8]
-    inv = 1.0 / math.sqrt(ex * ex + ez * ez)
-    cg = ex * inv
-    sg = -ez * inv
+    # Speeds below MIN_SPEED count as rest (as in the RFT kernel): no direction, no load.
+    big = max(abs(ex), abs(ez))
+    if big < MIN_SPEED:
+        return 0.0, 0.0
+    ux, uz = ex / big, ez / big
+    inv = 1.0 / math.sqrt(ux * ux + uz * uz)
+    cg = ux * inv
+    sg = -uz * inv
     c2b = nz * nz - nx * nx
     s2b = -2.0 * nx * nz
     az = a00 + a10 * c2b + b01 * sg + b11 * (s2b * cg + c2b * sg) + bm11 * (c2b * sg - s2b * cg)

@@ -41,7 +41,7 @@ from ..kinematics import Pose2D, Twist2D, Wrench2D, rotation_matrix
 from ..materials import Material
 from ._kernels_drft import SPLIT_TIE
 from .forces import Backend, as_elements
-from .li2013 import li2013_alpha_from_directions
+from .li2013 import MIN_SPEED, li2013_alpha_from_directions
 
 __all__ = [
     "DRFTElementForces",
@@ -287,6 +287,7 @@ def drft_element_forces(
     vn = np.einsum("ij,ij->i", normals, velocities)
     depth0 = surface - positions[:, 1]
     share = _leading_share(vn, velocities, band)
+    share = np.where(np.max(np.abs(velocities), axis=1) >= MIN_SPEED, share, 0.0)
     leading = share > 0
     drop = m.structural_drop(body, twist.omega)
     loaded = (depth0 > 0) & leading

@@ -13,7 +13,7 @@ from ..errors import InputError, check_finite
 from ..geometry import Body, SurfaceElements
 from ..kinematics import Pose2D, Twist2D, Wrench2D, rotation_matrix
 from ..materials import Material, RFTParameters
-from .li2013 import li2013_alpha_from_directions, rft_angles
+from .li2013 import MIN_SPEED, li2013_alpha_from_directions, rft_angles
 
 __all__ = [
     "Backend",
@@ -154,7 +154,8 @@ def rft_element_forces(
         (twist.vx + twist.omega * offsets[:, 1], twist.vz - twist.omega * offsets[:, 0])
     )
     depth = surface - positions[:, 1]
-    leading = np.einsum("ij,ij->i", normals, velocities) > 0
+    moving = np.max(np.abs(velocities), axis=1) >= MIN_SPEED
+    leading = (np.einsum("ij,ij->i", normals, velocities) > 0) & moving
     active = (depth > 0) & leading
     beta, gamma = rft_angles(normals, velocities)
     ax, az = li2013_alpha_from_directions(normals, velocities, rft.coefficients.as_array(), rft.scale)

@@ -25,7 +25,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..materials import LiCoefficients, Material, RFTParameters
 
+#: Element speeds below this [m/s] count as rest: no direction of motion, no load.
+MIN_SPEED = 1e-200
+
 __all__ = [
+    "MIN_SPEED",
     "li2013_alpha",
     "li2013_alpha_from_directions",
     "li2013_alpha_material",
