@@ -95,7 +95,7 @@ def high_speed(
     emit(rec, fmt, None, title="slip onset")
 
 
-def _plot_high_speed(res):  # type: ignore[no-untyped-def]
+def _plot_high_speed(res):
     import matplotlib.pyplot as plt
     import numpy as np
 

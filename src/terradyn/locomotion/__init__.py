@@ -1,5 +1,7 @@
 """Drivers: steady (quasi-static) wheel solves and sweeps over any terrain model."""
 
+from typing import Any
+
 from .steady import (
     WheelSteadyResult,
     wheel_nominal_radius,
@@ -9,7 +11,7 @@ from .steady import (
 from .sweeps import force_slip_sweep
 
 
-def __getattr__(name: str) -> object:
+def __getattr__(name: str) -> Any:
     """Lazy access to the time integrator (its numba kernels load on first use)."""
     if name in ("simulate_wheel", "stable_time_step", "WheelDynamicsResult"):
         from . import dynamics
