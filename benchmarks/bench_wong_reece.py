@@ -14,6 +14,7 @@ import numpy as np
 
 from terradyn.errors import SolverError
 from terradyn.materials import get
+from terradyn.terramechanics import _kernels as wrk
 from terradyn.terramechanics import wong_reece as wr
 from terradyn.terramechanics import wong_reece_wheel
 
@@ -65,8 +66,8 @@ def main() -> None:
         0.43 + 0.32 * 0.3,
         wr.DEFAULT_NODE_COUNT,
     )
-    t_kernel = _per_call(lambda: wr._wong_reece_integrals_many(*args))
-    t_ref = _per_call(lambda: wr._wong_reece_integrals_reference(*args))
+    t_kernel = _per_call(lambda: wrk._wong_reece_integrals_many(*args))
+    t_ref = _per_call(lambda: wrk._wong_reece_integrals_reference(*args))
     failures = _sweep()  # warm
     best = min(_per_call(_sweep, min_time=0.0) for _ in range(3))
     points = len(MEDIA) * len(LOADS) * len(SLIPS)
