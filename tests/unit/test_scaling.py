@@ -57,3 +57,27 @@ def test_groups_and_errors():
         )
     with pytest.raises(InputError, match=r"scale\.length"):
         ScaleFactors(length=0)
+
+
+@pytest.mark.parametrize("factors", [ScaleFactors(length=2.0), ScaleFactors(gravity=1.62 / 9.81)])
+def test_scaled_simulations_have_identical_dimensionless_trajectories(factors):
+    import numpy as np
+
+    from terradyn.locomotion import simulate_wheel
+
+    base = WheelTest(WheelCircular(0.1, 0.05), CPS, mass=3.0, omega=3.0)
+    new = scale_test(base, factors)
+    dt = 1e-3
+    runs = []
+    for test, step in ((base, dt), (new, dt * factors.time)):
+        runs.append(simulate_wheel(test.body, test.material, mass=test.mass, omega=test.omega,
+                                   gravity=test.gravity, duration=2.0 * (step / dt), dt=step,
+                                   output_every=10))
+    a, b = runs
+    L = factors.length
+    np.testing.assert_allclose(b.t / factors.time, a.t, rtol=1e-9)
+    np.testing.assert_allclose(b.x / L, a.x, atol=1e-6 * 0.1)
+    np.testing.assert_allclose(b.z / L, a.z, atol=1e-6 * 0.1)
+    np.testing.assert_allclose(b.vx / factors.velocity, a.vx, atol=1e-5 * float(np.abs(a.vx).max()))
+    np.testing.assert_allclose(b.slip, a.slip, atol=1e-5)
+    np.testing.assert_allclose(b.fz / factors.force, a.fz, atol=1e-5 * float(np.abs(a.fz).max()))
