@@ -146,8 +146,14 @@ def flapped_wheel_performance(
     omega: float = 1.0,
     phase_count: int = 24,
     element_size: float | None = None,
+    method: str = "steady",
+    revolutions: float = 4.0,
 ) -> dict[str, float]:
-    """Self-propelled quasi-static performance of a flapped wheel (RFT, period-averaged forces).
+    """Self-propelled performance of a flapped wheel with RFT.
+
+    ``method="steady"`` (default, fast): quasi-static, period-averaged forces (below).
+    ``method="dynamic"``: a free-body simulation (mass = load / 9.81, spin ``omega``) over
+    ``revolutions`` turns, averaged over the last whole revolution; it resolves the bobbing.
 
     Returns ``velocity_normalised`` = V / (omega R_out) = 1 - slip, ``slip``, ``sinkage_m``,
     ``cost_of_transport`` = P / (W V) (inf-free: SolverError when V <= 0) and ``outer_radius_m``.
@@ -167,6 +173,27 @@ def flapped_wheel_performance(
         flap_length=flap_length,
         flap_angle=flap_angle,
     )
+    if method not in ("steady", "dynamic"):
+        raise InputError("method", method, "'steady' or 'dynamic'")
+    if method == "dynamic":
+        from .locomotion.dynamics import simulate_wheel
+
+        check_positive("omega", omega)
+        check_positive("revolutions", revolutions)
+        run = simulate_wheel(wheel, material, mass=load / 9.81, omega=omega,
+                             duration=revolutions * 2 * math.pi / omega, output_every=10,
+                             element_size=element_size)
+        summary = run.steady_summary(revolutions=1.0)
+        speed = summary["forward_velocity_m_s"]
+        if speed <= 0:
+            raise SolverError("the wheel does not move forward")
+        return {
+            "velocity_normalised": speed / (omega * wheel.outer_radius),
+            "slip": summary["slip"],
+            "sinkage_m": summary["sinkage_m"],
+            "cost_of_transport": summary["power_W"] / (load * speed),
+            "outer_radius_m": wheel.outer_radius,
+        }
     res = wheel_self_propelled(
         wheel, RFTModel(material, element_size=element_size), load, omega=omega, phase_count=phase_count
     )
@@ -197,6 +224,7 @@ def optimize_flapped_wheel(
     population: int = 8,
     phase_count: int = 16,
     element_size: float | None = None,
+    method: str = "steady",
 ) -> OptimizationResult:
     """Best flap count, flap length / hub radius and flap angle [rad] of a flapped wheel.
 
@@ -217,6 +245,7 @@ def optimize_flapped_wheel(
             load=load,
             phase_count=phase_count,
             element_size=element_size,
+            method=method,
         )
         return perf[key]
 

@@ -24,6 +24,7 @@ def flapped_wheel(
     width: float = typer.Option(0.05, "--width", help="Wheel width [m]."),
     load: float = typer.Option(10.0, "--load", help="Vertical load [N]."),
     metric: str = typer.Option("velocity", "--metric", help="velocity or cost-of-transport."),
+    method: str = typer.Option("steady", "--method", help="steady (quasi-static) or dynamic (free body)."),
     flap_count_max: int = typer.Option(12, "--flap-count-max", help="Largest flap count."),
     length_ratio_max: float = typer.Option(
         1.5, "--length-ratio-max", help="Largest flap length / hub radius."
@@ -63,6 +64,7 @@ def flapped_wheel(
         seed=seed,
         max_iterations=iterations,
         population=population,
+        method=method,
     )
     if trace is not None:
         atomic_write_text(trace, res.evaluations.to_dataframe().to_csv(index=False))
