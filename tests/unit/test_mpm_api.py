@@ -185,9 +185,7 @@ def test_walls_coercion():
 
 
 def test_shipped_medium_with_mu_of_i_runs_and_reports_finite_forces():
-    res = run_intrusion(
-        Plate(0.08, 0.1), materials.get("generic"), depth=0.02, rate_dependent=True, **FAST
-    )
+    res = run_intrusion(Plate(0.08, 0.1), materials.get("generic"), depth=0.02, rate_dependent=True, **FAST)
     assert res.summary["force_z_N"] > 0
     assert "friction_coefficient_2=0.778" in res.metadata["granular_model"]
     assert np.isfinite(res.to_dataframe()[["force_x_N", "force_z_N", "torque_y_Nm"]].to_numpy()).all()

@@ -3,8 +3,17 @@
 The Dunatunga-Kamrin (2015) granular model (hypoelastic Jaumann trial stress, Drucker-Prager cone with
 optional mu(I) rate dependence, stress-free below the critical density) on an explicit MPM grid
 (APIC transfer, quadratic B-splines) with rigid bodies in frictional contact. Entry points:
-:func:`run_intrusion` and :func:`run_wheel`. Submodules are imported lazily so that
-``import terradyn.mpm`` does not load numba.
+:func:`run_intrusion` and :func:`run_wheel`; :class:`GranularModel` maps a material (mu = sin(phi)).
+
+Modelling choices to know when using it:
+
+* Forces are quasi-static only if the speed is small: inertia ``rho v^2`` and the elastic radiation
+  stress ``rho c v`` (c: P-wave speed of the softened bed) must be small against ``rho g D``.
+* A plate is at least three cells thick in MPM (:data:`terradyn.mpm.bodies.PLATE_MIN_CELLS`).
+* Free-slip walls nearer than about five body sizes (or 2.5 depths) lower deep intrusion forces.
+* Runs below :data:`terradyn.mpm.solver.PARALLEL_MIN_PARTICLES` particles use one thread.
+
+Submodules are imported lazily so that ``import terradyn.mpm`` does not load numba.
 """
 
 from __future__ import annotations

@@ -190,11 +190,14 @@ def _intrusion_bed(seg, c: _Common, depth, window, direction, angle, bed_depth, 
     sin_d, cos_d = math.sin(direction), math.cos(direction)
     travel = (z_start - z_end) / sin_d
     x_at_depth = (z_start + depth) / sin_d * cos_d
-    margin = max(3.0 * reach, 0.5 * depth, 4.0 * h)
-    bed_depth = depth + 0.5 * window + reach + margin if bed_depth is None else bed_depth
+    # Free-slip walls must lie beyond the failure mechanism (log-spiral fans reach several body sizes
+    # and grow with depth); closer walls give the mechanism a frictionless slip surface.
+    side = max(6.0 * reach, 2.5 * depth, 4.0 * h)
+    below = max(4.0 * reach, 1.5 * depth, 4.0 * h)
+    bed_depth = depth + 0.5 * window + reach + below if bed_depth is None else bed_depth
     x_path = sorted([-x_at_depth, -x_at_depth + travel * cos_d])
     if bed_width is None:
-        bed_width = x_path[1] - x_path[0] + 2 * (reach + margin)
+        bed_width = x_path[1] - x_path[0] + 2 * (reach + side)
     check_positive("bed_width", bed_width)
     x_left = 0.5 * (x_path[0] + x_path[1]) - 0.5 * bed_width
     grid = BedGrid(bed_width, bed_depth, z_start + reach + 4 * h, h, x_left, c.walls)
@@ -285,8 +288,9 @@ def run_intrusion(
     Parameters (others)
     -------------------
     cell_size : grid spacing [m]; default body diameter / 16; at least ``min_cells_across`` cells across.
-    bed_depth, bed_width : bed size [m]; defaults leave about 3 body radii (and at least the depth) of
-        grains around the body's path.
+    bed_depth, bed_width : bed size [m]; defaults leave max(6 body radii, 2.5 depth) of grains beside the
+        path and max(4 radii, 1.5 depth) below it: nearer free-slip walls cut the failure mechanism
+        and lower the force at depth (checked: walls 5 plate lengths away already do).
     packing, bed_density : initial state (:class:`BedPacking`) and density [kg/m^3].
     walls : :class:`Walls` or one kind for all sides ('free-slip', 'no-slip', 'frictional').
     youngs_modulus, poisson_ratio, friction_coefficient, surface_friction, rate_dependent : overrides of
