@@ -19,6 +19,29 @@ from .li2013 import MIN_SPEED
 __all__ = ["rft_wrench_kernel", "rft_wrench_many_kernel", "rft_wrench_phases_kernel"]
 
 
+@nb.njit(cache=True, fastmath=True, nogil=True, inline="always")
+def li2013_alpha_unit(coeffs: np.ndarray, nx: float, nz: float, cg: float, sg: float) -> tuple[float, float]:
+    """(alpha_x, alpha_z) of the Li et al. (2013) fit for unit scale, from the outward normal (nx, nz)
+    and the direction of motion (cos gamma, sin gamma) = (cg, sg); no trigonometry:
+    cos 2 beta = nz^2 - nx^2, sin 2 beta = -2 nx nz."""
+    c2b = nz * nz - nx * nx
+    s2b = -2.0 * nx * nz
+    az = (
+        coeffs[0]
+        + coeffs[1] * c2b
+        + coeffs[2] * sg
+        + coeffs[3] * (s2b * cg + c2b * sg)
+        + coeffs[4] * (c2b * sg - s2b * cg)
+    )
+    ax = (
+        coeffs[5] * cg
+        + coeffs[6] * (c2b * cg - s2b * sg)
+        + coeffs[7] * (c2b * cg + s2b * sg)
+        + coeffs[8] * s2b
+    )
+    return ax, az
+
+
 @nb.njit(cache=True, fastmath=True, nogil=True)
 def rft_wrench_kernel(
     mid: np.ndarray,
@@ -42,8 +65,6 @@ def rft_wrench_kernel(
     Only elements below ``surface`` [m] whose outward normal has a positive component along their
     velocity (leading elements) carry the traction ``scale * (-alpha_x, alpha_z) * depth``.
     """
-    a00, a10, b01, b11, bm11 = coeffs[0], coeffs[1], coeffs[2], coeffs[3], coeffs[4]
-    c01, c11, cm11, d10 = coeffs[5], coeffs[6], coeffs[7], coeffs[8]
     c = math.cos(theta)
     s = math.sin(theta)
     fx = 0.0
@@ -67,10 +88,7 @@ def rft_wrench_kernel(
         inv = 1.0 / math.sqrt(ux * ux + uz * uz)
         cg = ux * inv
         sg = -uz * inv
-        c2b = nz * nz - nx * nx
-        s2b = -2.0 * nx * nz
-        az = a00 + a10 * c2b + b01 * sg + b11 * (s2b * cg + c2b * sg) + bm11 * (c2b * sg - s2b * cg)
-        ax = c01 * cg + c11 * (c2b * cg - s2b * sg) + cm11 * (c2b * cg + s2b * sg) + d10 * s2b
+        ax, az = li2013_alpha_unit(coeffs, nx, nz, cg, sg)
         w = scale * depth * lengths[i] * width
         f_x = -ax * w
         f_z = az * w

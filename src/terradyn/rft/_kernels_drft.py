@@ -31,6 +31,7 @@ import math
 import numba as nb
 import numpy as np
 
+from ._kernels import li2013_alpha_unit
 from .li2013 import MIN_SPEED
 
 __all__ = [
@@ -73,8 +74,6 @@ def _leading_fraction(vn, ex, ez, band):
 @nb.njit(cache=True, fastmath=True, nogil=True, inline="always")
 def _element_force(coeffs, nx, nz, ex, ez, vn, depth, length, width, scale, lam_rho):
     """(F_x, F_z) [N] of one active element (the arithmetic of the RFT kernel, plus inertia)."""
-    a00, a10, b01, b11, bm11 = coeffs[0], coeffs[1], coeffs[2], coeffs[3], coeffs[4]
-    c01, c11, cm11, d10 = coeffs[5], coeffs[6], coeffs[7], coeffs[8]
     # Speeds below MIN_SPEED count as rest (as in the RFT kernel): no direction, no load.
     big = max(abs(ex), abs(ez))
     if big < MIN_SPEED:
@@ -83,10 +82,7 @@ def _element_force(coeffs, nx, nz, ex, ez, vn, depth, length, width, scale, lam_
     inv = 1.0 / math.sqrt(ux * ux + uz * uz)
     cg = ux * inv
     sg = -uz * inv
-    c2b = nz * nz - nx * nx
-    s2b = -2.0 * nx * nz
-    az = a00 + a10 * c2b + b01 * sg + b11 * (s2b * cg + c2b * sg) + bm11 * (c2b * sg - s2b * cg)
-    ax = c01 * cg + c11 * (c2b * cg - s2b * sg) + cm11 * (c2b * cg + s2b * sg) + d10 * s2b
+    ax, az = li2013_alpha_unit(coeffs, nx, nz, cg, sg)
     w = scale * depth * length * width
     f_x = -ax * w
     f_z = az * w
