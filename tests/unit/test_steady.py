@@ -125,3 +125,14 @@ def test_flapped_wheel_dynamic_average_matches_quasi_static():
     quasi = flapped_wheel_performance(materials.get("CPS"), **kw)
     dyn = flapped_wheel_performance(materials.get("CPS"), method="dynamic", **kw)
     assert dyn["velocity_normalised"] == pytest.approx(quasi["velocity_normalised"], abs=0.01)
+
+
+def test_c_leg_whose_reach_varies_with_phase_is_solved():
+    # The C-leg's lowest point moves by a whole diameter over a turn; the solver must bracket the
+    # load from the height at which no phase touches (regression: it used the shallowest phase).
+    from terradyn.geometry import CLeg
+
+    leg = CLeg(radius=0.05, width=0.02)
+    r = wheel_steady(leg, materials.get("poppy-cp"), 2.0, 0.2, phase_count=16)
+    assert r.vertical_force_min_N < 2.0 < r.vertical_force_max_N
+    assert r.sinkage_min_m < r.sinkage_m < r.sinkage_max_m

@@ -191,6 +191,8 @@ def _solve_height(fn: _ForceFunction, load: float, top: float, what: str) -> flo
         )
     # Bracket on the coarse grid: last height with fz >= load, next with fz < load.
     above = np.nonzero(fz < load)[0]
+    if above.size == 0:
+        raise SolverError(f"{what}: the body carries the load even with no contact; check its geometry")
     j = int(above[0])
     if np.any(np.diff(fz[j - 1 :]) > 1e-9 * max(1.0, load)) and np.any(fz[j:] >= load):
         raise SolverError(f"{what}: vertical force is not monotonic in sinkage; no unique sinkage")
@@ -237,7 +239,7 @@ def wheel_steady(
     fn = _ForceFunction(model, body, twist, thetas)
     lowest = _lowest_points(body, thetas)
     surface = fn.surface
-    top = surface - float(lowest.max())  # every phase just touching
+    top = surface - float(lowest.min())  # the deepest-reaching phase just touches: no contact
     z = _solve_height(fn, load, top, f"load {load:g} N at slip {slip:g}")
     w = fn.phases(z)
     dp, fz, tsoil = w[:, 0], w[:, 1], w[:, 2]
