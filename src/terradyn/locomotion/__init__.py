@@ -17,6 +17,10 @@ def __getattr__(name: str) -> Any:
         from . import dynamics
 
         return getattr(dynamics, name)
+    if name in ("simulate_coupled", "CoupledResult"):
+        from . import coupled
+
+        return getattr(coupled, name)
     if name in ("wheel_steady_3d", "sweep_3d", "WheelSteady3DResult"):
         from . import steady3d
 
@@ -24,10 +28,12 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(name)
 
 __all__ = [
+    "CoupledResult",
     "WheelDynamicsResult",
     "WheelSteady3DResult",
     "WheelSteadyResult",
     "force_slip_sweep",
+    "simulate_coupled",
     "simulate_wheel",
     "stable_time_step",
     "sweep_3d",

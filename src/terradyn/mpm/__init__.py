@@ -3,7 +3,9 @@
 The Dunatunga-Kamrin (2015) granular model (hypoelastic Jaumann trial stress, Drucker-Prager cone with
 optional mu(I) rate dependence, stress-free below the critical density) on an explicit MPM grid
 (APIC transfer, quadratic B-splines) with rigid bodies in frictional contact. Entry points:
-:func:`run_intrusion` and :func:`run_wheel`; :class:`GranularModel` maps a material (mu = sin(phi)).
+:func:`run_intrusion` and :func:`run_wheel`, and :class:`MPMTerrain`, the stateful terrain model
+(``init``/``step``) for driving a body from your own code; :class:`GranularModel` maps a material
+(mu = sin(phi)).
 
 Modelling choices to know when using it:
 
@@ -27,6 +29,7 @@ __all__ = [
     "GranularModel",
     "IntrusionResult",
     "MPMInstabilityError",
+    "MPMTerrain",
     "Wall",
     "WallKind",
     "Walls",
@@ -48,6 +51,7 @@ _WHERE = {
     "Walls": "model",
     "bed_stability_ratio": "model",
     "friction_coefficient_from_angle": "model",
+    "MPMTerrain": "terrain",
     "IntrusionResult": "runs",
     "WheelResult": "runs",
     "run_intrusion": "runs",

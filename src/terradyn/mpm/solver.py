@@ -306,11 +306,32 @@ class Runner:
         save_checkpoint(self.checkpoint_path, arrays, self.fingerprint)
         self._last_checkpoint = time.monotonic()
 
+    def prepare(self) -> None:
+        """Allocate the grid and scratch buffers (idempotent)."""
+        if getattr(self, "_buf", None) is None:
+            nx, nz = self.grid.shape
+            self._grid = (np.zeros((nx, nz)), np.zeros((nx, nz, 2)))
+            self._buf = K.make_buffer(nx, nz, len(self.particles))
+
+    def advance_steps(self, n: int, damping: float = 0.0) -> np.ndarray:
+        """Advance ``n`` steps (no recording) and check stability; returns the per-step body forces
+        (n, 3) per unit width [N/m, N/m, N m/m]."""
+        self.prepare()
+        forces = np.zeros((n, 3))
+        threads = numba.get_num_threads()
+        if len(self.particles) < PARALLEL_MIN_PARTICLES:
+            numba.set_num_threads(1)
+        try:
+            self._advance(n, damping, forces)
+        finally:
+            numba.set_num_threads(threads)
+        self.step += n
+        self._check(n)
+        return forces
+
     def run(self) -> None:
         """Run all phases from the current step to the end."""
-        nx, nz = self.grid.shape
-        self._grid = (np.zeros((nx, nz)), np.zeros((nx, nz, 2)))
-        self._buf = K.make_buffer(nx, nz, len(self.particles))
+        self.prepare()
         self._last_checkpoint = time.monotonic()
         start = 0
         for index, phase in enumerate(self.phases):
@@ -327,18 +348,8 @@ class Runner:
         self.save_checkpoint()
 
     def _chunk(self, index: int, phase: Phase, n: int) -> None:
-        p, b = self.particles, self.body
-        forces = np.zeros((n, 3))
-        threads = numba.get_num_threads()
-        if len(p) < PARALLEL_MIN_PARTICLES:
-            numba.set_num_threads(1)
-        try:
-            self._advance(n, phase.damping, forces)
-        finally:
-            numba.set_num_threads(threads)
-        self.step += n
-        self._check(n)
-        f = forces.mean(axis=0)
+        b = self.body
+        f = self.advance_steps(n, phase.damping).mean(axis=0)
         t = self.step * self.dt
         self.rows.append([index, self.step, t, *b.pose, *b.twist, *f])
         if self.snapshot_dir is not None and self.snapshot_every > 0:

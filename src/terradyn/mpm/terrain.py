@@ -1,0 +1,362 @@
+"""MPM as a *stateful* terrain model: ``init`` a settled bed around a body, then ``step`` it in time.
+
+The stateless models (RFT, DRFT, Wong-Reece) map ``(body, pose, twist) -> Wrench2D``. A granular
+continuum remembers where it has been pushed, so MPM is driven instead through
+:class:`terradyn.terrain.StatefulTerrainModel`::
+
+    terrain = MPMTerrain(materials.get("MS"), bed_width=0.4, bed_depth=0.15, cell_size=0.005)
+    terrain.init(plate, Pose2D(0.0, 0.01))          # builds and settles the bed, places the body
+    for k in range(n):
+        w = terrain.step(pose, twist, dt)            # grains advance by dt with the body moving rigidly
+        ...                                          # the caller integrates its own body with w
+
+During ``step`` the body moves kinematically from ``pose`` with the constant ``twist`` (it is the
+caller's body: the caller owns its dynamics); the MPM sub-steps ``dt`` with its own stable time step and
+returns the time-averaged wrench of the grains on the body over the interval. The medium's state
+(particles, time) persists between calls and can be checkpointed and restored.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError, check_positive, check_range
+from ..geometry import Body
+from ..kinematics import Pose2D, Twist2D, Wrench2D
+from ..materials import Material
+from .bodies import BodyState, body_segments, effective_body
+from .checkpoint import load_checkpoint, save_checkpoint
+from .model import BedPacking, GranularModel, Walls
+from .solver import BedGrid, ParticleState, Phase, Runner, make_bed, stable_time_step
+
+__all__ = ["MPMTerrain"]
+
+
+class MPMTerrain:
+    """A plane-strain MPM granular bed that one rigid body moves through, advanced step by step.
+
+    Parameters
+    ----------
+    material : a terradyn :class:`~terradyn.materials.Material` (its ``[continuum]`` parameters) or a
+        :class:`~terradyn.mpm.GranularModel`.
+    bed_width, bed_depth : size of the grain box [m]; its free surface is at z = 0 and it spans
+        ``x_left <= x <= x_left + bed_width`` (default centred on x = 0).
+    cell_size : grid spacing [m].
+    air : empty grid above the surface [m] (default ``bed_depth``); the body must stay below its top.
+    max_speed : the largest body-point speed [m/s] the caller will impose; it sets the MPM time step
+        (``dt = cfl h / (c_p + max_speed)``) and a faster body stops :meth:`step` with an error.
+    packing, bed_density, walls, particles_per_cell, cfl, gravity, settle_time : as in
+        :func:`terradyn.mpm.run_intrusion`.
+    youngs_modulus, poisson_ratio, friction_coefficient, surface_friction, rate_dependent :
+        overrides of the material's continuum parameters.
+    """
+
+    name = "mpm"
+
+    def __init__(
+        self,
+        material: Material | GranularModel,
+        *,
+        bed_width: float,
+        bed_depth: float,
+        cell_size: float,
+        x_left: float | None = None,
+        air: float | None = None,
+        max_speed: float = 0.5,
+        packing: BedPacking | str = BedPacking.CONSOLIDATED,
+        bed_density: float | None = None,
+        walls: Walls | str | None = None,
+        particles_per_cell: int = 2,
+        cfl: float = 0.3,
+        gravity: float = 9.81,
+        settle_time: float | None = None,
+        youngs_modulus: float | None = None,
+        poisson_ratio: float | None = None,
+        friction_coefficient: float | None = None,
+        surface_friction: float | None = None,
+        rate_dependent: bool = False,
+    ) -> None:
+        overrides = dict(
+            youngs_modulus=youngs_modulus,
+            poisson_ratio=poisson_ratio,
+            friction_coefficient=friction_coefficient,
+            surface_friction=surface_friction,
+        )
+        if isinstance(material, GranularModel):
+            model = material.with_changes(**{k: v for k, v in overrides.items() if v is not None})
+        elif isinstance(material, Material):
+            model = GranularModel.from_material(material, rate_dependent=rate_dependent, **overrides)
+        else:
+            raise InputError("material", material, "a terradyn Material or an mpm.GranularModel")
+        model.check_bed_stability()
+        self.model = model
+        check_positive("bed_width", bed_width)
+        check_positive("bed_depth", bed_depth)
+        air = bed_depth if air is None else air
+        x_left = -0.5 * bed_width if x_left is None else float(x_left)
+        self.grid = BedGrid(
+            float(bed_width), float(bed_depth), float(air), float(cell_size), x_left, Walls.coerce(walls)
+        )
+        try:
+            self.packing = BedPacking(packing)
+        except ValueError:
+            raise InputError("packing", packing, "'consolidated' or 'unconsolidated'") from None
+        self.bed_density = bed_density
+        self.particles_per_cell = int(particles_per_cell)
+        self.gravity = check_range("gravity", gravity, 0.01, 100.0, unit="m/s^2")
+        self.cfl = check_range("cfl", cfl, 1e-3, 0.5, hint="explicit MPM is stable for cfl <= 0.5")
+        self.max_speed = check_positive("max_speed", max_speed)
+        self.settle_time = (
+            settle_time
+            if settle_time is None
+            else check_positive("settle_time", settle_time, allow_zero=True)
+        )
+        self.dt = stable_time_step(model, self.grid.cell_size, cfl=self.cfl, speed=self.max_speed)
+        self._runner: Runner | None = None
+        self._body: Body | None = None
+        self._eff: Body | None = None
+        self._time = 0.0
+
+    # -- state ------------------------------------------------------------------------------------
+    @property
+    def initialized(self) -> bool:
+        return self._runner is not None
+
+    @property
+    def time(self) -> float:
+        """Simulated time [s] since the end of bed settling."""
+        self._require()
+        return self._time
+
+    @property
+    def body(self) -> Body:
+        """The body given to :meth:`init` (thin plates are thickened in MPM, see :attr:`mpm_body`)."""
+        self._require()
+        assert self._body is not None
+        return self._body
+
+    @property
+    def mpm_body(self) -> Body:
+        """The body as MPM resolves it."""
+        self._require()
+        assert self._eff is not None
+        return self._eff
+
+    @property
+    def pose(self) -> Pose2D:
+        """The body's pose at the end of the last step."""
+        p = self._require().body.pose
+        return Pose2D(float(p[0]), float(p[1]), float(p[2]))
+
+    def fields(self) -> dict[str, np.ndarray]:
+        """Per-particle fields now (positions, velocities, stresses, pressure, density...)."""
+        return self._require().particles.fields()
+
+    def _require(self) -> Runner:
+        if self._runner is None:
+            raise InputError("terrain", "not initialised", "call init(body, pose) before stepping")
+        return self._runner
+
+    # -- the stateful terrain interface -----------------------------------------------------------
+    def init(self, body: Body, pose: Pose2D) -> None:
+        """Build the bed, settle it under gravity to rest, and place ``body`` at ``pose``.
+
+        The body takes no part in settling; the pose may put it in contact with the surface or (for a
+        prescribed intrusion start) above it. Calling ``init`` again starts a fresh bed.
+        """
+        if not isinstance(pose, Pose2D):
+            raise InputError("pose", pose, "a terradyn.kinematics.Pose2D")
+        runner, eff, state = self._setup(body)
+        self._check_inside(state, pose, "pose")
+        depth = self.grid.depth
+        wave = self.model.wave_speed()
+        settle = self.settle_time
+        if settle is None:
+            settle = 40.0 * depth / wave
+            if self.packing is BedPacking.UNCONSOLIDATED:
+                settle += 4.0 * math.sqrt(0.05 * depth / self.gravity)
+        if settle > 0:
+            runner.phases = [Phase("settle", max(1, round(settle / self.dt)), damping=wave / depth)]
+            runner.run()
+        runner.has_body = True
+        state.pose[:] = pose.as_array()
+        self._runner, self._body, self._eff, self._time = runner, body, eff, 0.0
+
+    def _setup(self, body: Body) -> tuple[Runner, Body, BodyState]:
+        """A runner over a fresh (unsettled) bed, with ``body`` not yet in contact."""
+        if not isinstance(body, Body):
+            raise InputError("body", body, "a terradyn.geometry Body")
+        h = self.grid.cell_size
+        eff = effective_body(body, h)
+        state = BodyState(
+            seg=body_segments(eff, h),
+            pose=np.zeros(3),
+            twist=np.zeros(3),
+            free=np.zeros(2, dtype=np.bool_),
+            mass=1.0,
+            load=np.zeros(2),
+            friction=self.model.surface_friction,
+            width=body.width,
+        )
+        particles = make_bed(
+            self.model,
+            self.grid,
+            packing=self.packing,
+            density=self.bed_density,
+            particles_per_cell=self.particles_per_cell,
+            gravity=self.gravity,
+        )
+        runner = Runner(
+            self.model,
+            self.grid,
+            particles,
+            state,
+            self.dt,
+            [],
+            gravity=self.gravity,
+            has_body=False,
+            reference_speed=self.max_speed,
+        )
+        return runner, eff, state
+
+    def _check_inside(self, state: BodyState, pose: Pose2D, field: str) -> None:
+        x, z = pose.x, pose.z
+        r = state.reach
+        g = self.grid
+        lo_x, hi_x, lo_z, hi_z = g.bounds
+        if not (lo_x + r <= x <= hi_x - r and lo_z + r <= z <= hi_z - r):
+            raise InputError(
+                field,
+                f"(x={x:.4g}, z={z:.4g})",
+                f"a body origin at least its reach {r:.4g} m inside the grid "
+                f"[{lo_x:.4g}, {hi_x:.4g}] x [{lo_z:.4g}, {hi_z:.4g}] m",
+                "enlarge the bed or the air above it",
+            )
+
+    def step(
+        self,
+        pose: Pose2D,
+        twist: Twist2D,
+        dt: float,
+        *,
+        about: tuple[float, float] | None = None,
+    ) -> Wrench2D:
+        """Advance the medium by ``dt`` [s] with the body moving rigidly from ``pose`` at ``twist``.
+
+        Returns the grains' force [N] on the body and torque about +y [N m] about ``about`` (default
+        the body origin at ``pose``), averaged over the interval. ``dt`` is split into MPM steps of at
+        most the stable time step.
+        """
+        runner = self._require()
+        check_positive("dt", dt)
+        if not isinstance(pose, Pose2D):
+            raise InputError("pose", pose, "a terradyn.kinematics.Pose2D")
+        if not isinstance(twist, Twist2D):
+            raise InputError("twist", twist, "a terradyn.kinematics.Twist2D")
+        b = runner.body
+        speed = math.hypot(twist.vx, twist.vz) + abs(twist.omega) * b.reach
+        if speed > self.max_speed * (1.0 + 1e-9):
+            raise InputError(
+                "twist",
+                f"body-point speed {speed:.4g} m/s",
+                f"at most max_speed = {self.max_speed:g} m/s",
+                "create the terrain with a larger max_speed",
+            )
+        self._check_inside(b, pose, "pose")
+        n = max(1, math.ceil(dt / self.dt - 1e-9))
+        sub = dt / n
+        runner.dt = sub
+        b.pose[:] = pose.as_array()
+        b.twist[:] = twist.as_array()
+        b.free[:] = False
+        try:
+            forces = runner.advance_steps(n)
+        finally:
+            runner.dt = self.dt
+        self._time += dt
+        # Per-step torques are about the body origin of that step; move each to ``about``.
+        k = np.arange(n) + 0.5
+        ox = pose.x + k * sub * twist.vx
+        oz = pose.z + k * sub * twist.vz
+        ax, az = (pose.x, pose.z) if about is None else (float(about[0]), float(about[1]))
+        fx, fz = forces[:, 0], forces[:, 1]
+        ty = forces[:, 2] + (oz - az) * fx - (ox - ax) * fz
+        w = b.width
+        return Wrench2D(float(fx.mean() * w), float(fz.mean() * w), float(ty.mean() * w))
+
+    def wrench(self, body: Body, pose: Pose2D, twist: Twist2D, *, about=None) -> Wrench2D:
+        """Not available: MPM has state; use :meth:`init` and :meth:`step`."""
+        raise InputError(
+            "model",
+            "mpm",
+            "a stateless terrain model (rft, drft, wong-reece) for wrench()",
+            "MPM is stateful: call init(body, pose) then step(pose, twist, dt)",
+        )
+
+    # -- checkpoints ------------------------------------------------------------------------------
+    def save(self, path: str | Path) -> Path:
+        """Write the bed, the body pose and the time to ``path`` (.npz, written atomically)."""
+        runner = self._require()
+        arrays = runner.particles.arrays()
+        arrays.update(b_pose=runner.body.pose, time=np.array(self._time), step=np.array(runner.step))
+        return save_checkpoint(path, arrays, self._fingerprint())
+
+    def restore(self, body: Body, path: str | Path) -> None:
+        """Continue from a state written by :meth:`save` with the same terrain settings and ``body``.
+
+        Raises :class:`~terradyn.errors.InputError` if the file is missing or was written for other
+        settings or another body.
+        """
+        if not Path(path).exists():
+            raise InputError("path", str(path), "an existing MPM terrain state file")
+        runner, eff, _ = self._setup(body)
+        self._eff, self._body = eff, body
+        data = load_checkpoint(path, self._fingerprint())
+        runner.particles = ParticleState.from_arrays(data)
+        runner.body.pose[:] = data["b_pose"]
+        runner.step = int(data["step"])
+        runner.has_body = True
+        self._runner, self._time = runner, float(data["time"])
+
+    def _fingerprint(self) -> str:
+        import hashlib
+
+        key = (
+            "terrain",
+            self.model,
+            self.grid,
+            self.packing,
+            self.bed_density,
+            self.particles_per_cell,
+            self.gravity,
+            self.cfl,
+            self.max_speed,
+            repr(self._eff),
+            self._body.width if self._body is not None else None,
+        )
+        return hashlib.sha256(repr(key).encode()).hexdigest()
+
+    def __repr__(self) -> str:
+        g = self.grid
+        state = f"t={self.time:.4g} s" if self.initialized else "not initialised"
+        return (
+            f"MPMTerrain(bed {g.width:g} x {g.depth:g} m, cell {g.cell_size:g} m, "
+            f"dt {self.dt:.3g} s, {state})"
+        )
+
+    def describe(self) -> dict[str, Any]:
+        """Settings as plain values (for metadata)."""
+        g = self.grid
+        return {
+            "model": "terradyn MPM (stateful terrain)",
+            "granular_model": repr(self.model),
+            "cell_size_m": g.cell_size,
+            "bed_width_m": g.width,
+            "bed_depth_m": g.depth,
+            "dt_s": self.dt,
+            "particles": len(self._runner.particles) if self._runner is not None else 0,
+        }
