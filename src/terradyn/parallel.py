@@ -1,6 +1,7 @@
 """Running independent work items serially, on local processes or on a Dask cluster.
 
-``map_items(fn, items, scheduler=...)``: ``"serial"`` runs in this process; ``"local"`` starts a
+``map_items(fn, items, scheduler=...)``: ``"serial"`` runs in this process; ``"processes"`` uses a
+standard-library pool of worker processes (no extra dependency); ``"local"`` starts a
 Dask ``LocalCluster`` of single-threaded worker processes bound to the loopback interface;
 anything else is taken as the address of an existing Dask scheduler (``tcp://host:8786``).
 ``fn`` must be a module-level function and the items picklable. Results come back in item order, so
@@ -37,17 +38,19 @@ def map_items(
             if on_done is not None:
                 on_done(1)
         return out
+    if workers is not None and not (isinstance(workers, int) and workers >= 1):
+        raise InputError("workers", workers, "an integer >= 1")
+    if scheduler == "processes":
+        return _process_pool(fn, items, workers, on_done)
     try:
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:
         raise InputError(
             "scheduler",
             scheduler,
-            "'serial' unless dask is installed",
+            "'serial' or 'processes' unless dask is installed",
             "pip install 'terradyn[cluster]'",
         ) from None
-    if workers is not None and not (isinstance(workers, int) and workers >= 1):
-        raise InputError("workers", workers, "an integer >= 1")
     cluster: Any = None
     if scheduler == "local":
         n = workers or max(1, min(len(items), os.cpu_count() or 1))
@@ -62,7 +65,7 @@ def map_items(
         client = Client(cluster)
     else:
         if "://" not in scheduler:
-            raise InputError("scheduler", scheduler, "'serial', 'local' or an address like tcp://host:8786")
+            raise InputError("scheduler", scheduler, "'serial', 'processes', 'local' or an address like tcp://host:8786")
         try:
             client = Client(scheduler, timeout="10s")
         except OSError as exc:
@@ -80,3 +83,22 @@ def map_items(
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+def _process_pool(
+    fn: Callable[[T], R], items: Sequence[T], workers: int | None, on_done: Callable[[int], None] | None
+) -> list[R]:
+    """Standard-library process pool (spawned workers: safe with numba's threads)."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    n = workers or max(1, min(len(items), os.cpu_count() or 1))
+    results: list[Any] = [None] * len(items)
+    ctx = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=n, mp_context=ctx) as pool:
+        futures = {pool.submit(fn, item): i for i, item in enumerate(items)}
+        for fut in as_completed(futures):
+            results[futures[fut]] = fut.result()
+            if on_done is not None:
+                on_done(1)
+    return results

@@ -18,6 +18,25 @@ from .registry import StudyOutput, _Params, register_study
 __all__ = ["mpm_alpha_map", "mpm_wheel_versus_rft"]
 
 
+def _alpha_point(args: tuple) -> tuple[float, float, float, float]:
+    """One MPM plate intrusion (module level so worker processes can run it)."""
+    from ..mpm import run_intrusion
+
+    material, length, width, thickness, depth, cell_size, speed, angle_deg, direction_deg = args
+    plate = Plate(length, width, thickness=thickness)
+    res = run_intrusion(
+        plate,
+        materials.get(material),
+        depth=depth,
+        angle=math.radians(angle_deg),
+        direction=math.radians(direction_deg),
+        cell_size=cell_size,
+        speed=speed,
+    )
+    s = res.summary
+    return s["force_x_N"], s["force_z_N"], s["torque_y_Nm"], res.metadata["wall_time_s"]
+
+
 def mpm_alpha_map(
     material: str = "MS",
     *,
@@ -26,47 +45,72 @@ def mpm_alpha_map(
     length: float = 0.04,
     width: float = 0.02,
     depth: float = 0.04,
-    cell_size: float = 0.004,
+    cell_size: float = 0.005,
+    speed: float = 0.05,
     thickness: float | None = None,
+    scheduler: str = "serial",
+    workers: int | None = None,
 ) -> TableResult:
     """Stress per depth of a plate from MPM and from RFT over plate angles and motion directions.
 
-    MPM: the plate (``length`` x ``width``, thickness at least one cell) enters the settled bed along the
-    direction and its force is averaged as its centre passes ``depth``; alpha = F / (length width
-    depth) [N/m^3], alpha_x with the law's sign (positive resists motion along +x).
-    RFT: the Li et al. (2013) law of the same medium at beta = -angle, gamma = direction.
+    MPM: the plate (``length`` x ``width``; MPM makes it at least three cells thick) enters the settled
+    bed at ``speed`` [m/s] along the direction and its force is averaged as its centre passes ``depth``;
+    alpha = F / (length width depth) [N/m^3], alpha_x with the law's sign (positive resists motion
+    along +x). RFT: the Li et al. (2013) law of the same medium at beta = -angle, gamma = direction.
+    Points run on ``scheduler`` (see :func:`terradyn.parallel.map_items`; ``"processes"`` uses both
+    cores of a small machine).
     """
-    from ..mpm import run_intrusion
+    from ..parallel import map_items
 
     mat = materials.get(material)
-    plate = Plate(length, width, thickness=thickness if thickness is not None else cell_size)
-    rows: dict[str, list[float]] = {
-        k: []
-        for k in (
-            "angle_deg",
-            "direction_deg",
-            "alpha_x_mpm_N_per_m3",
-            "alpha_z_mpm_N_per_m3",
-            "alpha_x_rft_N_per_m3",
-            "alpha_z_rft_N_per_m3",
-        )
-    }
+    thick = cell_size if thickness is None else thickness
+    grid = [(a, g) for a in angles_deg for g in directions_deg]
+    jobs = [(material, length, width, thick, depth, cell_size, speed, a, g) for a, g in grid]
+    out = map_items(_alpha_point, jobs, scheduler=scheduler, workers=workers)
     norm = length * width * depth
-    for a in angles_deg:
-        for g in directions_deg:
-            res = run_intrusion(
-                plate, mat, depth=depth, angle=math.radians(a), direction=math.radians(g), cell_size=cell_size
-            )
-            ax_r, az_r = li2013_alpha_material(-math.radians(a), math.radians(g), mat)
-            rows["angle_deg"].append(a)
-            rows["direction_deg"].append(g)
-            rows["alpha_x_mpm_N_per_m3"].append(-res.summary["force_x_N"] / norm)
-            rows["alpha_z_mpm_N_per_m3"].append(res.summary["force_z_N"] / norm)
-            rows["alpha_x_rft_N_per_m3"].append(float(ax_r))
-            rows["alpha_z_rft_N_per_m3"].append(float(az_r))
-    return TableResult(
-        {k: np.asarray(v) for k, v in rows.items()},
-        {"material": mat.name, "cell_size_m": cell_size, "depth_m": depth},
+    rft = [li2013_alpha_material(-math.radians(a), math.radians(g), mat) for a, g in grid]
+    cols = {
+        "angle_deg": np.array([a for a, _ in grid], dtype=float),
+        "direction_deg": np.array([g for _, g in grid], dtype=float),
+        "alpha_x_mpm_N_per_m3": np.array([-o[0] / norm for o in out]),
+        "alpha_z_mpm_N_per_m3": np.array([o[1] / norm for o in out]),
+        "alpha_x_rft_N_per_m3": np.array([float(r[0]) for r in rft]),
+        "alpha_z_rft_N_per_m3": np.array([float(r[1]) for r in rft]),
+        "torque_y_mpm_Nm": np.array([o[2] for o in out]),
+        "wall_time_s": np.array([o[3] for o in out]),
+    }
+    meta = {
+        "material": mat.name,
+        "cell_size_m": cell_size,
+        "depth_m": depth,
+        "speed_m_s": speed,
+        "plate_length_m": length,
+        "plate_width_m": width,
+    }
+    return TableResult(cols, meta)
+
+
+def _wheel_point(args: tuple) -> tuple[float, float, float, float, float]:
+    """One forced-slip MPM wheel run (module level so worker processes can run it)."""
+    from ..mpm import run_wheel
+
+    material, radius, width, load, slip, omega, cell_size, duration = args
+    m = run_wheel(
+        WheelCircular(radius, width),
+        materials.get(material),
+        load=load,
+        omega=omega,
+        slip=slip,
+        cell_size=cell_size,
+        duration=duration,
+    )
+    s = m.summary
+    return (
+        s["sinkage_m"],
+        s["drawbar_pull_N"],
+        s["drive_torque_Nm"],
+        s["force_z_N"],
+        m.metadata["wall_time_s"],
     )
 
 
@@ -80,12 +124,22 @@ def mpm_wheel_versus_rft(
     omega: float = 1.0,
     cell_size: float | None = None,
     duration: float | None = None,
+    scheduler: str = "serial",
+    workers: int | None = None,
 ) -> TableResult:
-    """Forced-slip wheel: MPM sinkage, drawbar pull and torque against the RFT steady solve."""
-    from ..mpm import run_wheel
+    """Forced-slip wheel: MPM sinkage, drawbar pull and torque against the RFT steady solve.
+
+    MPM (:func:`terradyn.mpm.run_wheel`): the wheel sinks under ``load``, then spins at ``omega`` with
+    the forward speed ``(1 - s) omega radius`` prescribed and the vertical motion free for ``duration``
+    (default 1.5 / omega); values are averaged over the second half of the drive. RFT: the implicit
+    steady solve of the same wheel, load and slip. The 2D MPM force per width is scaled by ``width``.
+    """
+    from ..parallel import map_items
 
     mat = materials.get(material)
     wheel = WheelCircular(radius, width)
+    jobs = [(material, radius, width, load, float(s), omega, cell_size, duration) for s in slips]
+    out = map_items(_wheel_point, jobs, scheduler=scheduler, workers=workers)
     keys = (
         "slip",
         "sinkage_mpm_m",
@@ -94,74 +148,148 @@ def mpm_wheel_versus_rft(
         "drawbar_pull_rft_N",
         "drive_torque_mpm_Nm",
         "drive_torque_rft_Nm",
+        "force_z_mpm_N",
+        "wall_time_s",
     )
     rows: dict[str, list[float]] = {k: [] for k in keys}
-    for s in slips:
-        m = run_wheel(wheel, mat, load=load, omega=omega, slip=s, cell_size=cell_size, duration=duration)
+    for s, (sink, dp, torque, fz, wall) in zip(slips, out, strict=True):
         r = wheel_steady(wheel, mat, load, s, omega=omega)
-        vals = (
-            s,
-            m.summary["sinkage_m"],
-            r.sinkage_m,
-            m.summary["drawbar_pull_N"],
-            r.drawbar_pull_N,
-            m.summary["drive_torque_Nm"],
-            r.drive_torque_Nm,
-        )
+        vals = (s, sink, r.sinkage_m, dp, r.drawbar_pull_N, torque, r.drive_torque_Nm, fz, wall)
         for k, v in zip(keys, vals, strict=True):
             rows[k].append(float(v))
     return TableResult(
         {k: np.asarray(v) for k, v in rows.items()},
-        {"material": mat.name, "load_N": load, "radius_m": radius, "width_m": width},
+        {
+            "material": mat.name,
+            "load_N": load,
+            "radius_m": radius,
+            "width_m": width,
+            "omega_rad_s": omega,
+            "cell_size_m": cell_size if cell_size is not None else 2 * radius / 16,
+        },
     )
 
 
 class MPMAlphaParams(_Params):
     angles_deg: list[float] = Field(default_factory=lambda: [0.0, 30.0, 60.0, 90.0])
     directions_deg: list[float] = Field(default_factory=lambda: [30.0, 60.0, 90.0, 120.0, 150.0])
-    cell_size_m: float = Field(0.004, gt=0)
+    length_m: float = Field(0.04, gt=0)
+    cell_size_m: float = Field(0.005, gt=0)
     depth_m: float = Field(0.04, gt=0)
+    speed_m_s: float = Field(0.05, gt=0, le=1.0)
+    workers: int = Field(2, ge=1, le=256, description="Worker processes (1: run in this process).")
 
 
 class MPMWheelParams(_Params):
     load_N: float = Field(130.0, gt=0)
     slips: list[float] = Field(default_factory=lambda: [0.1, 0.3, 0.5])
     cell_size_m: float | None = Field(None, gt=0)
+    duration_s: float | None = Field(None, gt=0)
+    workers: int = Field(2, ge=1, le=256, description="Worker processes (1: run in this process).")
 
 
 def _run_alpha(p: MPMAlphaParams) -> StudyOutput:
     import matplotlib.pyplot as plt
 
     angles = p.angles_deg[:1] if p.quick else p.angles_deg
-    dirs = p.directions_deg[:1] if p.quick else p.directions_deg
+    dirs = [90.0] if p.quick else p.directions_deg
+    cell = p.length_m / 6.0 if p.quick else p.cell_size_m
     t = mpm_alpha_map(
-        p.material, angles_deg=angles, directions_deg=dirs, cell_size=p.cell_size_m, depth=p.depth_m
+        p.material,
+        angles_deg=angles,
+        directions_deg=dirs,
+        length=p.length_m,
+        cell_size=cell,
+        depth=p.depth_m,
+        speed=p.speed_m_s,
+        scheduler="serial" if p.workers == 1 or len(angles) * len(dirs) == 1 else "processes",
+        workers=p.workers,
     )
     c = t.columns
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    mat = materials.get(p.material)
+    gam = np.linspace(1.0, 179.0, 179)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharex=True)
+    for k, a in enumerate(angles):
+        colour = f"C{k}"
+        law = np.array([li2013_alpha_material(-math.radians(a), math.radians(g), mat) for g in gam])
+        sel = c["angle_deg"] == a
+        for ax, comp, j in ((axes[0], "z", 1), (axes[1], "x", 0)):
+            ax.plot(gam, law[:, j] / 1e6, "-", color=colour, lw=1, label=f"RFT, angle {a:g} deg")
+            ax.plot(
+                c["direction_deg"][sel],
+                c[f"alpha_{comp}_mpm_N_per_m3"][sel] / 1e6,
+                "o",
+                color=colour,
+                label=f"MPM, angle {a:g} deg",
+            )
     for ax, comp in zip(axes, ("z", "x"), strict=True):
-        ax.plot(c[f"alpha_{comp}_rft_N_per_m3"] / 1e6, c[f"alpha_{comp}_mpm_N_per_m3"] / 1e6, "o")
-        lim = np.abs(np.concatenate([c[f"alpha_{comp}_rft_N_per_m3"], c[f"alpha_{comp}_mpm_N_per_m3"]])).max()
-        ax.plot([-lim / 1e6, lim / 1e6], [-lim / 1e6, lim / 1e6], "k--", lw=0.8)
-        ax.set_xlabel(f"RFT alpha_{comp} [N/cm^3]")
-        ax.set_ylabel(f"MPM alpha_{comp} [N/cm^3]")
-    fig.suptitle(f"Plate alpha: MPM vs RFT, {t.metadata['material']}")
-    ratio = c["alpha_z_mpm_N_per_m3"] / np.where(c["alpha_z_rft_N_per_m3"] != 0, c["alpha_z_rft_N_per_m3"], 1)
+        ax.set_xlabel("direction of motion gamma [deg below +x]")
+        ax.set_ylabel(f"alpha_{comp} [N/cm^3]")
+        ax.axhline(0.0, color="k", lw=0.5)
+    axes[0].legend(fontsize=7)
+    fig.suptitle(
+        f"Plate stress per depth, MPM (cell {cell * 1e3:g} mm, {p.speed_m_s:g} m/s) vs RFT, {mat.name}"
+    )
+    fig.tight_layout()
+    rz, rr = c["alpha_z_rft_N_per_m3"], c["alpha_z_mpm_N_per_m3"]
+    ratio = rr / np.where(rz != 0, rz, np.nan)
+    mag_mpm = np.hypot(c["alpha_x_mpm_N_per_m3"], rr)
+    mag_rft = np.hypot(c["alpha_x_rft_N_per_m3"], rz)
+    dx = c["alpha_x_mpm_N_per_m3"] - c["alpha_x_rft_N_per_m3"]
+    # One scale factor (the material constant zeta of RFT's scaling law) fitted to both components,
+    # and what is left of the difference after it: the shape of the alpha map.
+    m_all = np.concatenate([c["alpha_x_mpm_N_per_m3"], rr])
+    r_all = np.concatenate([c["alpha_x_rft_N_per_m3"], rz])
+    scale = float(np.dot(m_all, r_all) / np.dot(r_all, r_all))
+    shape = float(np.sqrt(np.mean((m_all - scale * r_all) ** 2)) / np.sqrt(np.mean((scale * r_all) ** 2)))
     summary = [
         {
             "points": len(t),
-            "alpha_z_ratio_mean": float(ratio.mean()),
-            "alpha_z_ratio_min": float(ratio.min()),
-            "alpha_z_ratio_max": float(ratio.max()),
+            "alpha_z_ratio_mean": float(np.nanmean(ratio)),
+            "alpha_z_ratio_min": float(np.nanmin(ratio)),
+            "alpha_z_ratio_max": float(np.nanmax(ratio)),
+            "magnitude_ratio_mean": float(np.mean(mag_mpm / mag_rft)),
+            "rms_difference_over_rms_rft": float(
+                np.sqrt(np.mean(dx**2 + (rr - rz) ** 2)) / np.sqrt(np.mean(mag_rft**2))
+            ),
+            "best_fit_scale_mpm_over_rft": scale,
+            "shape_rms_difference_after_scale": shape,
+            "mpm_wall_time_s": float(c["wall_time_s"].sum()),
         }
     ]
     return StudyOutput({"mpm_alpha": t}, {"mpm_alpha": fig}, summary)
 
 
 def _run_wheel(p: MPMWheelParams) -> StudyOutput:
+    import matplotlib.pyplot as plt
+
     slips = p.slips[:1] if p.quick else p.slips
-    t = mpm_wheel_versus_rft(p.material, load=p.load_N, slips=slips, cell_size=p.cell_size_m)
-    return StudyOutput({"mpm_wheel": t}, {}, t.records())
+    cell = 0.26 / 8.0 if p.quick else p.cell_size_m  # quick: 8 cells across the default wheel
+    t = mpm_wheel_versus_rft(
+        p.material,
+        load=p.load_N,
+        slips=slips,
+        cell_size=cell,
+        duration=0.5 if p.quick else p.duration_s,
+        scheduler="serial" if p.workers == 1 or len(slips) == 1 else "processes",
+        workers=p.workers,
+    )
+    c = t.columns
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8))
+    for ax, key, label in (
+        (axes[0], "sinkage", "sinkage [m]"),
+        (axes[1], "drawbar_pull", "drawbar pull [N]"),
+        (axes[2], "drive_torque", "drive torque [N m]"),
+    ):
+        unit = "m" if key == "sinkage" else ("N" if key == "drawbar_pull" else "Nm")
+        ax.plot(c["slip"], c[f"{key}_rft_{unit}"], "s-", label="RFT (steady)")
+        ax.plot(c["slip"], c[f"{key}_mpm_{unit}"], "o--", label="MPM (plane strain)")
+        ax.set_xlabel("slip")
+        ax.set_ylabel(label)
+    axes[0].legend()
+    fig.suptitle(f"Forced-slip wheel, {t.metadata['material']}, load {p.load_N:g} N")
+    fig.tight_layout()
+    return StudyOutput({"mpm_wheel": t}, {"mpm_wheel": fig}, t.records())
 
 
 register_study("mpm-alpha", MPMAlphaParams, _run_alpha, "plate alpha over angle and direction: MPM vs RFT")
