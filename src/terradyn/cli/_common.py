@@ -132,14 +132,20 @@ def emit(
     sys.stdout.write(text)
 
 
-def save_figure(fig: Any, path: Path) -> Path:
-    """Save a matplotlib figure atomically (format from the file extension)."""
+def check_figure_path(path: Path, field: str = "--plot") -> Path:
+    """``path`` if it names a figure file (.png/.pdf/.svg/.jpg) in an existing folder."""
     p = Path(path)
-    suffix = p.suffix.lower()
-    if suffix not in {".png", ".pdf", ".svg", ".jpg", ".jpeg"}:
-        raise InputError("--plot", str(path), "a file ending in .png, .pdf, .svg or .jpg")
+    if p.suffix.lower() not in {".png", ".pdf", ".svg", ".jpg", ".jpeg"}:
+        raise InputError(field, str(path), "a file ending in .png, .pdf, .svg or .jpg")
     if p.parent and not p.parent.exists():
-        raise InputError("--plot", str(path), "a path in an existing folder")
+        raise InputError(field, str(path), "a path in an existing folder")
+    return p
+
+
+def save_figure(fig: Any, path: Path, field: str = "--plot") -> Path:
+    """Save a matplotlib figure atomically (format from the file extension)."""
+    p = check_figure_path(path, field)
+    suffix = p.suffix.lower()
     fd, tmp = tempfile.mkstemp(prefix=f".{p.stem}.", suffix=suffix, dir=p.parent or Path("."))
     os.close(fd)
     try:

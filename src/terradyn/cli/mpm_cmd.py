@@ -8,6 +8,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import typer
 
 from .. import materials
@@ -34,6 +35,11 @@ class MPMOptions:
     resume = typer.Option(False, "--resume", help="Continue a killed run from --checkpoint.")
     snapshots = typer.Option(None, "--snapshots", help="Folder for particle snapshots (NetCDF).")
     series = typer.Option(None, "--series", help="Time series CSV.")
+    fields = typer.Option(
+        None, "--fields", help="Plot of particle speed and pressure at the end of the run (PNG/PDF)."
+    )
+    animate = typer.Option(None, "--animate", help="Animation of particle speed (GIF or MP4).")
+    frames = typer.Option(40, "--frames", help="Frames in the --animate animation.")
 
 
 @contextmanager
@@ -65,6 +71,47 @@ def _progress_bar(label: str) -> Iterator[Callable[[float, float], None]]:
 def _write_series(result: Any, path: Path | None) -> None:
     if path is not None:
         atomic_write_text(path, result.to_dataframe().to_csv(index=False))
+
+
+def _check_field_outputs(plot: Path | None, fields: Path | None, animate: Path | None, frames: int) -> int:
+    """Validate the plot options before the run; returns the frame count to keep."""
+    from ..plotting.animation import check_animation_path
+    from ._common import check_figure_path
+
+    if plot is not None:
+        check_figure_path(plot, "--plot")
+    if fields is not None:
+        check_figure_path(fields, "--fields")
+    if animate is None:
+        return 0
+    check_animation_path(animate, "--animate")
+    if not 2 <= frames <= 500:
+        raise InputError("--frames", frames, "an integer in [2, 500]")
+    return frames
+
+
+def _field_outputs(result: Any, fields: Path | None, animate: Path | None) -> None:
+    from ..plotting.mpm import animate_frames, plot_fields
+
+    final = result.final_frame
+    seg = np.asarray(final["segments"])
+    pts = seg.reshape(-1, 2)
+    reach = 0.5 * float(np.ptp(pts, axis=0).max())
+    cx, cz = pts.mean(axis=0)
+    window = (cx - 5 * reach, cx + 5 * reach, cz - 4 * reach, cz + 2 * reach)
+    if fields is not None:
+        fig = plot_fields(
+            result.final_particles,
+            segments=seg,
+            window=window,
+            title=f"MPM, t = {float(final['time_s']):.3f} s",
+        )
+        save_figure(fig, fields, "--fields")
+    if animate is not None:
+        lo = min(float(np.asarray(f["segments"]).reshape(-1, 2)[:, 0].min()) for f in result.frames)
+        hi = max(float(np.asarray(f["segments"]).reshape(-1, 2)[:, 0].max()) for f in result.frames)
+        win = (lo - 3 * reach, hi + 3 * reach, window[2], window[3])
+        animate_frames(result.frames, animate, window=win)
 
 
 def _plot_series(result: Any, path: Path, keys: tuple[str, ...]) -> None:
@@ -115,6 +162,9 @@ def intrude(
     resume: bool = MPMOptions.resume,
     snapshots: Path | None = MPMOptions.snapshots,
     series: Path | None = MPMOptions.series,
+    fields: Path | None = MPMOptions.fields,
+    animate: Path | None = MPMOptions.animate,
+    frames: int = MPMOptions.frames,
     fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
     out: Path | None = typer.Option(None, "--out", help="Also write the summary to this file."),
     plot: Path | None = typer.Option(None, "--plot", help="Force history plot (PNG/PDF)."),
@@ -143,6 +193,7 @@ def intrude(
     )
     if resume and checkpoint is None:
         raise InputError("--resume", True, "together with --checkpoint FILE")
+    frame_count = _check_field_outputs(plot, fields, animate, frames)
     with _progress_bar("MPM intrusion") as bar:
         res = run_intrusion(
             shape,
@@ -160,8 +211,10 @@ def intrude(
             resume=resume,
             snapshot_dir=snapshots,
             progress=bar,
+            frame_count=frame_count,
         )
     _write_series(res, series)
+    _field_outputs(res, fields, animate)
     if plot is not None:
         _plot_series(res, plot, ("force_x_N", "force_z_N"))
     emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out)
@@ -194,6 +247,9 @@ def wheel(
     resume: bool = MPMOptions.resume,
     snapshots: Path | None = MPMOptions.snapshots,
     series: Path | None = MPMOptions.series,
+    fields: Path | None = MPMOptions.fields,
+    animate: Path | None = MPMOptions.animate,
+    frames: int = MPMOptions.frames,
     fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
     out: Path | None = typer.Option(None, "--out", help="Also write the summary to this file."),
     plot: Path | None = typer.Option(None, "--plot", help="Force history plot (PNG/PDF)."),
@@ -227,6 +283,7 @@ def wheel(
     )
     if resume and checkpoint is None:
         raise InputError("--resume", True, "together with --checkpoint FILE")
+    frame_count = _check_field_outputs(plot, fields, animate, frames)
     with _progress_bar("MPM wheel") as bar:
         res = run_wheel(
             body,
@@ -244,8 +301,10 @@ def wheel(
             resume=resume,
             snapshot_dir=snapshots,
             progress=bar,
+            frame_count=frame_count,
         )
     _write_series(res, series)
+    _field_outputs(res, fields, animate)
     if plot is not None:
         _plot_series(res, plot, ("drawbar_pull_N", "force_z_N", "sinkage_m"))
     keys = (

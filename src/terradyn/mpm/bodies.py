@@ -21,7 +21,15 @@ from numpy.typing import NDArray
 from ..errors import InputError
 from ..geometry import Body, Plate
 
-__all__ = ["PLATE_MIN_CELLS", "BodyState", "DofMode", "body_segments", "effective_body", "lowest_point"]
+__all__ = [
+    "PLATE_MIN_CELLS",
+    "BodyState",
+    "DofMode",
+    "body_segments",
+    "body_segments_world",
+    "effective_body",
+    "lowest_point",
+]
 
 #: Minimum plate thickness in MPM, in cells.
 PLATE_MIN_CELLS = 3.0
@@ -65,6 +73,17 @@ def body_segments(body: Body, cell_size: float) -> NDArray[np.float64]:
     seg = np.vstack(segs)
     keep = np.hypot(seg[:, 2] - seg[:, 0], seg[:, 3] - seg[:, 1]) > 0
     return np.ascontiguousarray(seg[keep])
+
+
+def body_segments_world(seg: NDArray[np.float64], pose: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Outline segments (S, 2, 2) [m] in the world at ``pose`` (x, z, theta): ``x + R(theta) p``."""
+    c, s = math.cos(pose[2]), math.sin(pose[2])
+    out = np.empty((len(seg), 2, 2))
+    for k in (0, 1):
+        px, pz = seg[:, 2 * k], seg[:, 2 * k + 1]
+        out[:, k, 0] = pose[0] + c * px + s * pz
+        out[:, k, 1] = pose[1] - s * px + c * pz
+    return out
 
 
 def lowest_point(seg: NDArray[np.float64], pose: NDArray[np.float64]) -> float:

@@ -34,6 +34,8 @@ class _MPMResult:
     summary: dict[str, float]
     metadata: dict[str, Any] = field(default_factory=dict)
     final_particles: dict[str, np.ndarray] | None = None
+    frames: list[dict[str, np.ndarray]] = field(default_factory=list)
+    final_frame: dict[str, np.ndarray] | None = None
 
     def to_dataframe(self) -> Any:
         """The time series as a pandas DataFrame (metadata in ``attrs``)."""
@@ -142,6 +144,15 @@ def _settle_phases(c: _Common, depth: float, settle_time: float | None, dt: floa
     check_positive("settle_time", settle_time, allow_zero=True)
     n = max(1, round(settle_time / dt))
     return [Phase("settle", n, damping=wave / depth, twist=(0.0, 0.0, 0.0), free=(False, False))]
+
+
+def _frame_every(frame_count: int, motion_steps: int, record_every: int) -> int:
+    """Recorded rows between animation frames so that the motion phase gives about ``frame_count``."""
+    if not (isinstance(frame_count, int | np.integer) and 0 <= frame_count <= 2000):
+        raise InputError("frame_count", frame_count, "an integer in [0, 2000]")
+    if frame_count == 0:
+        return 0
+    return max(1, round(motion_steps / record_every / frame_count))
 
 
 def _execute(runner: Runner, resume: bool) -> float:
@@ -276,6 +287,7 @@ def run_intrusion(
     checkpoint_interval: float = 600.0,
     resume: bool = False,
     progress: ProgressCallback | None = None,
+    frame_count: int = 0,
 ) -> IntrusionResult:
     """Push ``body`` at constant velocity into a settled bed and report the force at ``depth``.
 
@@ -300,6 +312,8 @@ def run_intrusion(
     checkpoint_path, checkpoint_interval, resume : checkpoint file (.npz), wall-clock seconds between
         checkpoints, and whether to continue from an existing checkpoint.
     progress : callable ``(simulated_time_s, fraction_done)``.
+    frame_count : keep about this many light copies of the state during the motion (``result.frames``,
+        for :func:`terradyn.plotting.mpm.animate_frames`); 0 keeps none. Frames are not checkpointed.
     """
     overrides = dict(
         youngs_modulus=youngs_modulus,
@@ -354,6 +368,7 @@ def run_intrusion(
     io = (snapshot_dir, snap_every, checkpoint_path, checkpoint_interval, progress)
     key = ("intrusion", repr(eff), body.width, model, depth, direction, angle, speed, settle_time)
     runner = _runner(c, grid, state, dt, phases, record_every, speed, io, key)
+    runner.frame_every = _frame_every(frame_count, phases[-1].n_steps, record_every)
     wall = _execute(runner, resume)
     series = _series(runner, body.width, skip_phases=1)
     series = {"depth_m": -series["z_m"], **series}
@@ -371,7 +386,7 @@ def run_intrusion(
         "averaging_window_m": float(window),
     }
     meta = _metadata(runner, model, body, eff, wall)
-    return IntrusionResult(series, summary, meta, runner.particles.fields())
+    return IntrusionResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())
 
 
 def _metadata(runner: Runner, model: GranularModel, body: Body, eff: Body, wall: float) -> dict[str, Any]:
@@ -480,6 +495,7 @@ def run_wheel(
     checkpoint_interval: float = 600.0,
     resume: bool = False,
     progress: ProgressCallback | None = None,
+    frame_count: int = 0,
 ) -> WheelResult:
     """Drive a wheel (any body) over a settled bed under a vertical ``load`` [N].
 
@@ -552,8 +568,9 @@ def run_wheel(
     io = (snapshot_dir, snap_every, checkpoint_path, checkpoint_interval, progress)
     key = ("wheel", repr(eff), wheel.width, model, load, omega, slip, duration, sink_time, settle_time)
     runner = _runner(c, grid, state, dt, phases, record_every, v_max, io, key)
+    runner.frame_every = _frame_every(frame_count, phases[-1].n_steps, record_every)
     wall = _execute(runner, resume)
     series, summary = _wheel_summary(runner, wheel.width, seg, average_fraction, omega, radius, load)
     meta = _metadata(runner, model, wheel, eff, wall)
     meta["mode"] = "forced-slip" if slip is not None else "self-propelled"
-    return WheelResult(series, summary, meta, runner.particles.fields())
+    return WheelResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())

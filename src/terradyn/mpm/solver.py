@@ -18,7 +18,7 @@ import numpy as np
 
 from ..errors import InputError, SolverError, check_positive, check_range
 from . import _kernels as K
-from .bodies import BodyState
+from .bodies import BodyState, body_segments_world
 from .checkpoint import load_checkpoint, save_checkpoint, write_snapshot
 from .model import BedPacking, GranularModel, Walls
 
@@ -256,8 +256,10 @@ class Runner:
     snapshot_dir: Path | None = None
     snapshot_every: int = 0
     progress: ProgressCallback | None = None
+    frame_every: int = 0
     step: int = 0
     rows: list[list[float]] = field(default_factory=list)
+    frames: list[dict[str, np.ndarray]] = field(default_factory=list)
     _last_checkpoint: float = field(default=0.0, repr=False)
 
     ROW = (
@@ -355,6 +357,8 @@ class Runner:
         if self.snapshot_dir is not None and self.snapshot_every > 0:
             if (self.step // self.record_every) % self.snapshot_every == 0:
                 self.write_snapshot()
+        if self.frame_every > 0 and (self.step // self.record_every) % self.frame_every == 0:
+            self.frames.append(self.frame())
         if self.checkpoint_path is not None:
             if time.monotonic() - self._last_checkpoint >= self.checkpoint_interval:
                 self.save_checkpoint()
@@ -401,6 +405,21 @@ class Runner:
             b.friction,
             forces,
         )
+
+    def frame(self) -> dict[str, np.ndarray]:
+        """A light copy of the state for animations: time, body pose and outline, particle x, z,
+        speed and pressure (float32)."""
+        p, b = self.particles, self.body
+        st = p.stress
+        return {
+            "time_s": np.array(self.step * self.dt),
+            "step": np.array(self.step),
+            "segments": body_segments_world(b.seg, b.pose) if self.has_body else np.zeros((0, 2, 2)),
+            "x": p.pos[:, 0].astype(np.float32),
+            "z": p.pos[:, 1].astype(np.float32),
+            "speed": np.hypot(p.vel[:, 0], p.vel[:, 1]).astype(np.float32),
+            "pressure": (-(st[:, 0] + st[:, 1] + st[:, 3]) / 3.0).astype(np.float32),
+        }
 
     def write_snapshot(self) -> Path | None:
         if self.snapshot_dir is None:

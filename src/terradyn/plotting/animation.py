@@ -11,7 +11,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["animate_body", "plot_time_series"]
+__all__ = ["animate_body", "check_animation_path", "plot_time_series", "save_animation"]
 
 
 def _umask() -> int:
@@ -63,7 +63,7 @@ def animate_body(
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
-    from matplotlib.animation import FFMpegWriter, FuncAnimation, PillowWriter
+    from matplotlib.animation import FuncAnimation
 
     from ..kinematics import Pose2D, Twist2D, to_world
     from ..rft import rft_element_forces
@@ -113,27 +113,48 @@ def animate_body(
         ax.set_title(f"t = {result.t[i]:.3f} s, slip = {result.slip[i]:.3f}")
 
     anim = FuncAnimation(fig, draw, frames=len(idx))
+    try:
+        return save_animation(anim, p, fps=fps, field="--animate")
+    finally:
+        plt.close(fig)
+
+
+def check_animation_path(path: str | Path, field: str = "--animate") -> Path:
+    """``path`` as a Path if it ends in .gif/.mp4 and its folder exists (check before computing)."""
+    p = Path(path)
+    if p.suffix.lower() not in (".gif", ".mp4"):
+        raise InputError(field, str(path), "a file ending in .gif or .mp4")
+    if p.parent and not p.parent.exists():
+        raise InputError(field, str(path), "a path in an existing folder")
+    return p
+
+
+def save_animation(anim: Any, path: str | Path, *, fps: int, field: str) -> Path:
+    """Save a matplotlib animation as GIF (Pillow) or MP4 (imageio-ffmpeg) atomically."""
+    import matplotlib
+    from matplotlib.animation import FFMpegWriter, PillowWriter
+
+    p = check_animation_path(path, field)
+    suffix = p.suffix.lower()
+    if not (isinstance(fps, int) and 1 <= fps <= 120):
+        raise InputError("fps", fps, "an integer in [1, 120]")
+    if suffix == ".gif":
+        writer: Any = PillowWriter(fps=fps)
+    else:
+        try:
+            import imageio_ffmpeg
+
+            matplotlib.rcParams["animation.ffmpeg_path"] = imageio_ffmpeg.get_ffmpeg_exe()
+        except ImportError:
+            raise InputError(field, str(path), "a .gif, or install terradyn[video] for MP4") from None
+        writer = FFMpegWriter(fps=fps)
     fd, tmp = tempfile.mkstemp(prefix=f".{p.stem}.", suffix=suffix, dir=p.parent or Path("."))
     os.close(fd)
     try:
-        if suffix == ".gif":
-            writer: Any = PillowWriter(fps=fps)
-        else:
-            try:
-                import imageio_ffmpeg
-
-                matplotlib.rcParams["animation.ffmpeg_path"] = imageio_ffmpeg.get_ffmpeg_exe()
-            except ImportError:
-                raise InputError(
-                    "--animate", str(path), "a .gif, or install terradyn[video] for MP4"
-                ) from None
-            writer = FFMpegWriter(fps=fps)
         anim.save(tmp, writer=writer)
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, p)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
-    finally:
-        plt.close(fig)
     return p
