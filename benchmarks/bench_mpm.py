@@ -2,11 +2,14 @@
 
 Each size is a settled-looking bed (geostatic stress, Dunatunga-Kamrin model, rate-independent) with a
 rigid plate resting in it, advanced by the compiled step loop; the figure is particles x steps / seconds
-after a warm-up. Run: ``python benchmarks/bench_mpm.py [--quick]``.
+after a warm-up. Run: ``python benchmarks/bench_mpm.py [--quick] [--studies]``; ``--studies`` (or
+``TERRADYN_BENCH_STUDIES=1`` under ``make bench``) also times the mpm-wheel and mpm-alpha studies at
+their default resolution.
 """
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 
@@ -79,6 +82,18 @@ def main() -> None:
         f"{md['particles']} particles, {md['steps']} steps, cell {md['cell_size_m'] * 1e3:.2f} mm, "
         f"F_z = {res.summary['force_z_N']:.2f} N"
     )
+    if "--studies" not in sys.argv and os.environ.get("TERRADYN_BENCH_STUDIES") != "1":
+        print("(study wall times: run with --studies or TERRADYN_BENCH_STUDIES=1; about 12 min)")
+        return
+    from terradyn.studies.registry import run_study
+
+    for name in ("mpm-wheel", "mpm-alpha"):
+        t0 = time.perf_counter()
+        _, out = run_study(name)
+        wall = time.perf_counter() - t0
+        print(f"study {name} at its default resolution (2 worker processes): {wall:.0f} s wall")
+        for rec in out.summary:
+            print("   ", {k: round(v, 4) if isinstance(v, float) else v for k, v in rec.items()})
 
 
 if __name__ == "__main__":

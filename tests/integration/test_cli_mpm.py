@@ -35,13 +35,43 @@ def test_mpm_intrude_plate_coarse(run_cli, tmp_path):
     assert series.exists()
 
 
-@pytest.mark.slow
 def test_mpm_alpha_study_quick(run_cli, tmp_path):
+    """One MPM point of the alpha study: a flat plate pushed down to 4 cm in MS.
+
+    Independent reference: its bearing pressure against plane-strain strip-footing theory at the same
+    friction angle (continuum.md 7.1): q = gamma D N_q d_q + gamma B N_gamma / 2, between Brinch Hansen's
+    N_gamma without depth factor and Vesic's with d_q = 1 + 2 tan(phi) (1 - sin(phi))^2 D / B. The
+    zero-dilatancy model sits at or below associated-flow values, hence the 0.8 margin below.
+    """
+    import math
+
+    import pandas as pd
+
+    from terradyn import materials
+    from terradyn.mpm import GranularModel
+
     code, out, err = run_cli("study", "run", "mpm-alpha", "--quick", "--out", str(tmp_path / "a"),
                              "--format", "json")
     assert code == 0, err
     rec = json.loads(out)[0]
-    assert rec["alpha_z_ratio_mean"] > 0
+    assert rec["points"] == 1
+    df = pd.read_csv(tmp_path / "a" / "mpm_alpha.csv")
+    assert (tmp_path / "a" / "mpm_alpha.png").stat().st_size > 10_000
+    assert {"alpha_z_rft_body_N_per_m3", "alpha_x_rft_body_N_per_m3"} <= set(df.columns)
+    row = df.iloc[0]
+    assert abs(row["alpha_x_mpm_N_per_m3"]) < 0.05 * row["alpha_z_mpm_N_per_m3"]  # symmetric
+    model = GranularModel.from_material(materials.get("MS"))
+    gam = max(model.bulk_density, 1.02 * model.critical_density) * 9.81
+    phi = model.friction_angle
+    t = math.tan(phi)
+    n_q = math.exp(math.pi * t) * math.tan(math.pi / 4 + phi / 2) ** 2
+    b, h = 0.04, 0.04 / 6  # plate length and the quick cell size (MPM plate: three cells thick)
+    d = 0.04 + 1.5 * h  # depth of the plate's bottom face
+    d_q = 1 + 2 * t * (1 - math.sin(phi)) ** 2 * d / b
+    low = gam * d * n_q + 0.5 * gam * b * 1.5 * (n_q - 1) * t
+    high = gam * d * n_q * d_q + 0.5 * gam * b * 2 * (n_q + 1) * t
+    q = row["alpha_z_mpm_N_per_m3"] * 0.04  # F / (B w) = alpha D
+    assert 0.8 * low < q < high
 
 
 def test_mpm_intrude_writes_field_plot_and_animation(run_cli, tmp_path):
@@ -54,3 +84,13 @@ def test_mpm_intrude_writes_field_plot_and_animation(run_cli, tmp_path):
     assert fields.stat().st_size > 10_000
     assert anim.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
     assert not list(tmp_path.glob(".*"))  # no temporary files left behind
+
+
+def test_mpm_wheel_study_quick(run_cli, tmp_path):
+    code, out, err = run_cli("study", "run", "mpm-wheel", "--quick", "--out", str(tmp_path / "w"),
+                             "--format", "json")
+    assert code == 0, err
+    rec = json.loads(out)[0]
+    assert rec["force_z_mpm_N"] == pytest.approx(130.0, rel=0.05)  # vertical equilibrium under the load
+    assert rec["sinkage_mpm_m"] > 0 and rec["sinkage_rft_m"] > 0
+    assert (tmp_path / "w" / "mpm_wheel.png").exists() and (tmp_path / "w" / "mpm_wheel.csv").exists()
