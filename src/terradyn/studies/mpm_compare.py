@@ -156,7 +156,8 @@ def mpm_wheel_versus_rft(
 
     MPM (:func:`terradyn.mpm.run_wheel`): the wheel sinks under ``load``, then spins at ``omega`` with
     the forward speed ``(1 - s) omega radius`` prescribed and the vertical motion free for ``duration``
-    (default 1.5 / omega); values are averaged over the second half of the drive. RFT: the implicit
+    (default 3 / omega: the pull settles after about two radians of rotation); values are averaged
+    over the second half of the drive. RFT: the implicit
     steady solve of the same wheel, load and slip. The 2D MPM force per width is scaled by ``width``.
     """
     from ..parallel import map_items
