@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, fields, replace
 from enum import Enum
+from typing import Any
 
 from ..errors import InputError, check_positive, check_range
 from ..materials import Material
@@ -32,7 +33,9 @@ __all__ = [
     "WallKind",
     "Walls",
     "bed_stability_ratio",
+    "default_settle_time",
     "friction_coefficient_from_angle",
+    "resolve_model",
 ]
 
 
@@ -256,3 +259,27 @@ class GranularModel:
                 self.critical_density,
             ]
         )
+
+
+def resolve_model(material: Any, *, rate_dependent: bool = False, **overrides: float | None) -> GranularModel:
+    """The granular model of a :class:`Material` (its ``[continuum]`` table) or a given
+    :class:`GranularModel`, with non-None ``overrides`` replacing single parameters; checked for bed
+    stability."""
+    changes = {k: v for k, v in overrides.items() if v is not None}
+    if isinstance(material, GranularModel):
+        model = material.with_changes(**changes)
+    elif isinstance(material, Material):
+        model = GranularModel.from_material(material, rate_dependent=rate_dependent, **changes)
+    else:
+        raise InputError("material", material, "a terradyn Material or an mpm.GranularModel")
+    model.check_bed_stability()
+    return model
+
+
+def default_settle_time(model: GranularModel, depth: float, packing: BedPacking, gravity: float) -> float:
+    """Settling time [s] of a bed ``depth`` [m] deep: 40 P-wave transits (damped), plus a free-fall
+    time for an unconsolidated bed to compact."""
+    t = 40.0 * depth / model.wave_speed()
+    if packing is BedPacking.UNCONSOLIDATED:
+        t += 4.0 * math.sqrt(0.05 * depth / gravity)
+    return t

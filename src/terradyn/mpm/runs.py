@@ -20,7 +20,7 @@ from ..errors import InputError, check_positive, check_range
 from ..geometry import Body
 from ..materials import Material
 from .bodies import BodyState, body_segments, effective_body, lowest_point
-from .model import BedPacking, GranularModel, Walls
+from .model import BedPacking, GranularModel, Walls, default_settle_time, resolve_model
 from .solver import BedGrid, Phase, ProgressCallback, Runner, make_bed, stable_time_step
 
 __all__ = ["IntrusionResult", "WheelResult", "run_intrusion", "run_wheel"]
@@ -87,15 +87,7 @@ def _common(
     min_cells_across,
     overrides,
 ) -> tuple[_Common, Body]:
-    if isinstance(material, GranularModel):
-        model = material.with_changes(
-            **{k: v for k, v in overrides.items() if v is not None and k != "rate_dependent"}
-        )
-    elif isinstance(material, Material):
-        model = GranularModel.from_material(material, **overrides)
-    else:
-        raise InputError("material", material, "a terradyn Material or an mpm.GranularModel")
-    model.check_bed_stability()
+    model = resolve_model(material, **overrides)
     if not isinstance(body, Body):
         raise InputError("body", body, "a terradyn.geometry Body")
     diameter = 2.0 * body.bounding_radius
@@ -138,9 +130,7 @@ def _settle_phases(c: _Common, depth: float, settle_time: float | None, dt: floa
     """Damped settling of the bed under gravity (the body waits above the surface)."""
     wave = c.model.wave_speed()
     if settle_time is None:
-        settle_time = 40.0 * depth / wave
-        if c.packing is BedPacking.UNCONSOLIDATED:
-            settle_time += 4.0 * math.sqrt(0.05 * depth / c.gravity)
+        settle_time = default_settle_time(c.model, depth, c.packing, c.gravity)
     check_positive("settle_time", settle_time, allow_zero=True)
     n = max(1, round(settle_time / dt))
     return [Phase("settle", n, damping=wave / depth, twist=(0.0, 0.0, 0.0), free=(False, False))]

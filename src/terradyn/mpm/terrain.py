@@ -30,7 +30,7 @@ from ..kinematics import Pose2D, Twist2D, Wrench2D
 from ..materials import Material
 from .bodies import BodyState, body_segments, effective_body
 from .checkpoint import load_checkpoint, save_checkpoint
-from .model import BedPacking, GranularModel, Walls
+from .model import BedPacking, GranularModel, Walls, default_settle_time, resolve_model
 from .solver import BedGrid, ParticleState, Phase, Runner, make_bed, stable_time_step
 
 __all__ = ["MPMTerrain"]
@@ -80,19 +80,14 @@ class MPMTerrain:
         surface_friction: float | None = None,
         rate_dependent: bool = False,
     ) -> None:
-        overrides = dict(
+        model = resolve_model(
+            material,
+            rate_dependent=rate_dependent,
             youngs_modulus=youngs_modulus,
             poisson_ratio=poisson_ratio,
             friction_coefficient=friction_coefficient,
             surface_friction=surface_friction,
         )
-        if isinstance(material, GranularModel):
-            model = material.with_changes(**{k: v for k, v in overrides.items() if v is not None})
-        elif isinstance(material, Material):
-            model = GranularModel.from_material(material, rate_dependent=rate_dependent, **overrides)
-        else:
-            raise InputError("material", material, "a terradyn Material or an mpm.GranularModel")
-        model.check_bed_stability()
         self.model = model
         check_positive("bed_width", bed_width)
         check_positive("bed_depth", bed_depth)
@@ -176,9 +171,7 @@ class MPMTerrain:
         wave = self.model.wave_speed()
         settle = self.settle_time
         if settle is None:
-            settle = 40.0 * depth / wave
-            if self.packing is BedPacking.UNCONSOLIDATED:
-                settle += 4.0 * math.sqrt(0.05 * depth / self.gravity)
+            settle = default_settle_time(self.model, depth, self.packing, self.gravity)
         if settle > 0:
             runner.phases = [Phase("settle", max(1, round(settle / self.dt)), damping=wave / depth)]
             runner.run()
