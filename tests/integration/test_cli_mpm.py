@@ -1,5 +1,6 @@
 import json
 
+import numpy as np
 import pytest
 
 
@@ -78,8 +79,14 @@ def test_mpm_intrude_writes_field_plot_and_animation(run_cli, tmp_path):
     fields, anim = tmp_path / "fields.png", tmp_path / "run.gif"
     code, out, err = run_cli("mpm", "intrude", "plate", "--length", "0.06", "--width", "0.02", "--depth",
                              "0.02", "--material", "MS", "--cell-size", "0.01", "--format", "json",
-                             "--fields", str(fields), "--animate", str(anim), "--frames", "4")
+                             "--fields", str(fields), "--animate", str(anim), "--frames", "4",
+                             "--series", str(tmp_path / "s.csv"), "--record-spacing", "0.005")
     assert code == 0, err
+    import pandas as pd
+
+    depth = pd.read_csv(tmp_path / "s.csv")["depth_m"].to_numpy()
+    step = np.diff(depth)
+    assert np.allclose(step[1:-1], 0.005, rtol=0.05)  # rows every 5 mm of travel
     assert json.loads(out)["force_z_N"] > 0
     assert fields.stat().st_size > 10_000
     assert anim.read_bytes()[:6] in (b"GIF89a", b"GIF87a")

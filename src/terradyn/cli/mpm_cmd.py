@@ -160,6 +160,12 @@ def intrude(
     checkpoint: Path | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
+    record_spacing: float | None = typer.Option(
+        None, "--record-spacing", help="Travel [m] per time-series row (default cell/4)."
+    ),
+    snapshot_spacing: float | None = typer.Option(
+        None, "--snapshot-spacing", help="Travel [m] between --snapshots files (default 4 cells)."
+    ),
     snapshots: Path | None = MPMOptions.snapshots,
     series: Path | None = MPMOptions.series,
     fields: Path | None = MPMOptions.fields,
@@ -209,6 +215,8 @@ def intrude(
             checkpoint_path=checkpoint,
             checkpoint_interval=checkpoint_interval,
             resume=resume,
+            record_spacing=record_spacing,
+            snapshot_spacing=snapshot_spacing,
             snapshot_dir=snapshots,
             progress=bar,
             frame_count=frame_count,
@@ -245,6 +253,12 @@ def wheel(
     checkpoint: Path | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
+    record_interval: float | None = typer.Option(
+        None, "--record-interval", help="Simulated seconds per time-series row (default duration/200)."
+    ),
+    snapshot_interval: float | None = typer.Option(
+        None, "--snapshot-interval", help="Simulated seconds between --snapshots files (default duration/20)."
+    ),
     snapshots: Path | None = MPMOptions.snapshots,
     series: Path | None = MPMOptions.series,
     fields: Path | None = MPMOptions.fields,
@@ -299,6 +313,8 @@ def wheel(
             checkpoint_path=checkpoint,
             checkpoint_interval=checkpoint_interval,
             resume=resume,
+            record_interval=record_interval,
+            snapshot_interval=snapshot_interval,
             snapshot_dir=snapshots,
             progress=bar,
             frame_count=frame_count,
