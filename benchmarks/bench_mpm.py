@@ -83,7 +83,7 @@ def main() -> None:
         f"F_z = {res.summary['force_z_N']:.2f} N"
     )
     if "--studies" not in sys.argv and os.environ.get("TERRADYN_BENCH_STUDIES") != "1":
-        print("(study wall times: run with --studies or TERRADYN_BENCH_STUDIES=1; about 12 min)")
+        print("(study wall times: run with --studies or TERRADYN_BENCH_STUDIES=1; about 18 min)")
         return
     from terradyn.studies.registry import run_study
 

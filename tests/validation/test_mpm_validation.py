@@ -143,10 +143,21 @@ def test_plate_force_is_proportional_to_out_of_plane_width():
     assert f2["torque_y_Nm"] == pytest.approx(2.5 * f1["torque_y_Nm"], rel=1e-6, abs=1e-9)
 
 
-@pytest.mark.slow
-def test_plate_force_scales_with_plate_length():
-    f = [force_at(plate_run(0.005, length=b, depth=0.06), [0.05])[0] for b in (0.03, 0.06)]
-    assert 1.5 < f[1] / f[0] < 2.8
+@pytest.mark.parametrize(
+    ("cell_size", "lengths", "depth", "at"),
+    [
+        (0.01, (0.04, 0.08), 0.08, [0.05, 0.06]),
+        pytest.param(0.005, (0.03, 0.06), 0.06, [0.05], marks=pytest.mark.slow),
+    ],
+)
+def test_plate_force_scales_with_plate_length(cell_size, lengths, depth, at):
+    """Doubling the plate breadth B more than doubles the force at a fixed depth D, short of
+    quadrupling it: strip-footing theory F = B (gamma D N_q d_q + gamma B N_gamma / 2) gives a ratio of
+    about 2.1-2.5 at phi = 30 deg for these sizes (coarse grids, whose plates are thickened to three
+    cells, measure 1.6-1.75)."""
+    f = [force_at(plate_run(cell_size, length=b, depth=depth), at) for b in lengths]
+    ratio = f[1] / f[0]
+    assert np.all((1.4 < ratio) & (ratio < 2.8))
 
 
 def test_plate_force_converges_as_cell_size_is_halved():
