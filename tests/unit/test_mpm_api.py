@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+from mpm_reference import MODEL
 from terradyn import materials
 from terradyn.errors import InputError
 from terradyn.geometry import Plate, WheelCircular
@@ -23,18 +24,6 @@ from terradyn.mpm import (
     run_wheel,
 )
 
-MODEL = GranularModel(
-    youngs_modulus=1e6,
-    poisson_ratio=0.33,
-    friction_coefficient=0.5,
-    friction_coefficient_2=0.5,
-    inertial_number_0=0.278,
-    grain_diameter=1e-3,
-    grain_density=2600.0,
-    critical_density=1500.0,
-    bulk_density=1560.0,
-    surface_friction=0.4,
-)
 FAST = dict(cell_size=0.01, speed=0.2, bed_width=0.2, bed_depth=0.12, settle_time=0.02)
 
 

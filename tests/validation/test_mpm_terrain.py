@@ -9,27 +9,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from mpm_reference import MODEL
 from terradyn import materials
 from terradyn.errors import InputError
 from terradyn.geometry import Plate, WheelCircular
 from terradyn.kinematics import Pose2D, Twist2D
 from terradyn.locomotion import simulate_coupled, wheel_steady
-from terradyn.mpm import GranularModel, MPMTerrain, run_intrusion
+from terradyn.mpm import MPMTerrain, run_intrusion
 from terradyn.rft import RFTModel
 from terradyn.terrain import StatefulTerrainModel, Stateless
 
-MODEL = GranularModel(
-    youngs_modulus=1e6,
-    poisson_ratio=0.33,
-    friction_coefficient=0.5,
-    friction_coefficient_2=0.5,
-    inertial_number_0=0.278,
-    grain_diameter=1e-3,
-    grain_density=2600.0,
-    critical_density=1500.0,
-    bulk_density=1560.0,
-    surface_friction=0.4,
-)
 H = 0.01
 
 

@@ -9,24 +9,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from mpm_reference import BULK_DENSITY, MODEL
 from terradyn.geometry import Plate
-from terradyn.mpm import GranularModel, run_intrusion, run_wheel
+from terradyn.mpm import run_intrusion, run_wheel
 from terradyn.mpm.bodies import BodyState
 from terradyn.mpm.solver import BedGrid, Phase, Runner, make_bed, stable_time_step
 
-RHO, G = 1560.0, 9.81
-MODEL = GranularModel(
-    youngs_modulus=1e6,
-    poisson_ratio=0.33,
-    friction_coefficient=0.5,
-    friction_coefficient_2=0.5,
-    inertial_number_0=0.278,
-    grain_diameter=1e-3,
-    grain_density=2600.0,
-    critical_density=1500.0,
-    bulk_density=RHO,
-    surface_friction=0.4,
-)
+RHO, G = BULK_DENSITY, 9.81
 # N_gamma at phi = 30 deg (continuum.md section 7.1): exact smooth (Martin) ... Vesic.
 N_GAMMA_RANGE = (7.65, 22.40)
 
