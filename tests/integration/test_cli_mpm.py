@@ -15,6 +15,8 @@ import pytest
         (["intrude", "plate", "--length", "0.06", "--depth", "0.03", "--fields", "f.txt"], "--fields"),
         (["intrude", "plate", "--length", "0.06", "--depth", "0.03", "--plot", "/no/such/p.png"], "--plot"),
         (["wheel", "--load", "10", "--omega", "1", "--animate", "a.gif", "--frames", "1"], "--frames"),
+        (["wheel", "--load", "10"], "omega"),
+        (["wheel", "--load", "10", "--drive-torque", "1", "--slip", "0.2"], "slip"),
     ],
 )
 def test_mpm_bad_input(run_cli, args, needle):

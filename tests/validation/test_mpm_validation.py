@@ -195,20 +195,64 @@ def test_bearing_capacity_converges_with_cell_size():
     assert abs(n[2] / n[1] - 1.0) < 0.2
 
 
-def wheel_run(slip, duration=0.5):
+def wheel_run(slip, duration=0.5, **kw):
     from terradyn.geometry import WheelCircular
 
+    kw = {"omega": 2.0, **kw}
     return run_wheel(
         WheelCircular(0.05, 0.05),
         MODEL,
         load=5.0,
-        omega=2.0,
         slip=slip,
         cell_size=0.01,
         duration=duration,
         sink_time=0.15,
         settle_time=0.05,
+        **kw,
     )
+
+
+def test_torque_driven_wheel_balances_the_applied_torque():
+    """Free spin under a drive torque: the soil's resisting torque settles on the applied one."""
+    res = wheel_run(None, duration=1.0, omega=None, drive_torque=0.05)
+    s = res.summary
+    assert s["drive_torque_Nm"] == pytest.approx(0.05, rel=0.05)
+    assert s["force_z_N"] == pytest.approx(5.0, rel=0.05)
+    assert s["omega_rad_s"] > 0 and 0.0 < s["slip"] < 1.0
+    assert res.metadata["mode"] == "torque-driven"
+
+
+def test_towed_load_is_carried_as_drawbar_pull():
+    """Self-propelled at a fixed spin with a horizontal load on the axle: the pull equals the load."""
+    s = wheel_run(None, duration=1.0, drawbar_load=0.5).summary
+    assert s["drawbar_pull_N"] == pytest.approx(0.5, rel=0.1)
+    assert s["slip"] > 0.5  # pulling a load at omega = 2 rad/s needs much more slip than free rolling
+
+
+def test_wheel_that_spins_away_stops_with_a_clear_error():
+    from terradyn.mpm import MPMInstabilityError
+
+    with pytest.raises(MPMInstabilityError, match="runs away"):
+        wheel_run(None, duration=0.3, omega=None, drive_torque=5.0, max_omega=3.0)
+
+
+@pytest.mark.parametrize(
+    ("kw", "field"),
+    [
+        ({"omega": 1.0, "drive_torque": 0.1}, "omega"),
+        ({"omega": None}, "omega"),
+        ({"omega": None, "drive_torque": 0.1, "slip": 0.2}, "slip"),
+        ({"slip": 0.2, "drawbar_load": 1.0}, "drawbar_load"),
+        ({"omega": None, "drive_torque": 0.1, "max_omega": 0.0}, "max_omega"),
+    ],
+)
+def test_wheel_control_modes_are_validated(kw, field):
+    from terradyn.errors import InputError
+    from terradyn.geometry import WheelCircular
+
+    kw = {"omega": 2.0, **kw}
+    with pytest.raises(InputError, match=field):
+        run_wheel(WheelCircular(0.05, 0.05), MODEL, load=5.0, cell_size=0.01, **kw)
 
 
 def test_wheel_forced_slip_orders_drawbar_pull_and_torque():

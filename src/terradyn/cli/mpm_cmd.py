@@ -232,8 +232,15 @@ def intrude(
 def wheel(
     material: str = typer.Option("MS", "--material", help="Medium name or TOML file."),
     load: float = typer.Option(..., "--load", help="Vertical load [N]."),
-    omega: float = typer.Option(..., "--omega", help="Spin rate [rad/s]."),
+    omega: float | None = typer.Option(None, "--omega", help="Spin rate [rad/s] (or --drive-torque)."),
     slip: float | None = typer.Option(None, "--slip", help="Imposed slip; omit for self-propelled."),
+    drive_torque: float | None = typer.Option(
+        None, "--drive-torque", help="Drive torque [N m] instead of --omega: the spin is free."
+    ),
+    max_omega: float = typer.Option(5.0, "--max-omega", help="Largest spin [rad/s] with --drive-torque."),
+    drawbar_load: float = typer.Option(
+        0.0, "--drawbar-load", help="Horizontal load on the axle [N] (+ backwards) when x is free."
+    ),
     duration: float | None = typer.Option(None, "--duration", help="Driving time [s]."),
     radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
     width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
@@ -268,7 +275,8 @@ def wheel(
     out: Path | None = typer.Option(None, "--out", help="Also write the summary to this file."),
     plot: Path | None = typer.Option(None, "--plot", help="Force history plot (PNG/PDF)."),
 ) -> None:
-    """Wheel on a settled MPM bed: forced slip (--slip) or self-propelled; sinkage, pull and torque."""
+    """Wheel on a settled MPM bed: forced slip (--slip), self-propelled at --omega (optionally towing
+    --drawbar-load), or torque-driven (--drive-torque); sinkage, pull, torque and slip."""
     from ..mpm import run_wheel
     from .wheel_cmd import WheelShape, _shape_flags, wheel_body
 
@@ -305,6 +313,9 @@ def wheel(
             load=load,
             omega=omega,
             slip=slip,
+            drive_torque=drive_torque,
+            max_omega=max_omega,
+            drawbar_load=drawbar_load,
             duration=duration,
             cell_size=cell_size,
             particles_per_cell=particles_per_cell,
@@ -331,6 +342,7 @@ def wheel(
         "force_z_N",
         "torque_y_Nm",
         "slip",
-        "forward_velocity_m_s",
+        "omega_rad_s",
+        "forward_speed_m_s",
     )
     emit({k: res.summary[k] for k in keys if k in res.summary}, fmt, out)

@@ -451,6 +451,7 @@ def advance(
     pose,
     twist,
     body_mass,
+    body_inertia,
     free,
     load,
     reach,
@@ -461,8 +462,9 @@ def advance(
 
     ``material`` (8,) = (G, lambda, mu_s, mu_2, I_0, d, rho_s, rho_c) in SI. Body: ``seg`` outline
     segments in its frame, ``pose`` (3,) = (x, z, theta) and ``twist`` (3,) = (vx, vz, omega) updated
-    in place; ``free`` (2,) flags x/z translation as free (else prescribed by ``twist``), with mass
-    ``body_mass`` [kg/m] and external force ``load`` (2,) [N/m] (gravity included by the caller).
+    in place; ``free`` (3,) flags x/z translation and the spin as free (else prescribed by ``twist``),
+    with mass ``body_mass`` [kg/m], moment of inertia ``body_inertia`` [kg m^2/m] and external load
+    ``load`` (3,) = force [N/m] (gravity included by the caller) and torque about +y [N m/m].
     ``forces`` (n_steps, 3) receives the grain force and torque on the body each step [N/m, N m/m].
     """
     g_mod = material[0]
@@ -479,6 +481,8 @@ def advance(
                 twist[0] += dt * (fx + load[0]) / body_mass
             if free[1]:
                 twist[1] += dt * (fz + load[1]) / body_mass
+            if free[2]:
+                twist[2] += dt * (ty + load[2]) / body_inertia
             pose[0] += dt * twist[0]
             pose[1] += dt * twist[1]
             pose[2] += dt * twist[2]
@@ -511,6 +515,8 @@ def advance(
                 twist[0] += dt * px / body_mass
             if free[1]:
                 twist[1] += dt * pz / body_mass
+            if free[2]:
+                twist[2] += dt * pt / body_inertia
             fx += px
             fz += pz
             ty += pt

@@ -102,11 +102,14 @@ class BodyState:
     seg : (S, 4) outline segments in the body frame [m]
     pose : (3,) x [m], z [m], theta [rad]
     twist : (3,) vx [m/s], vz [m/s], omega [rad/s]
-    free : (2,) bool, x/z translation free (else prescribed by ``twist``)
+    free : (3,) bool, x/z translation and spin free (else prescribed by ``twist``); a (2,) array is
+        padded with a prescribed spin
     mass : float  [kg/m]
-    load : (2,) external force incl. gravity on the body [N/m]
+    load : (3,) external force incl. gravity [N/m] and torque about +y (a drive torque) [N m/m] on the
+        body; a (2,) array is padded with zero torque
     friction : float  body-grain Coulomb coefficient [-]
     width : float  out-of-plane width [m] (results are per-width values times this)
+    inertia : float  moment of inertia about the origin [kg m^2/m] (used when the spin is free)
     """
 
     seg: NDArray[np.float64]
@@ -117,6 +120,17 @@ class BodyState:
     load: NDArray[np.float64]
     friction: float
     width: float
+    inertia: float = 1.0
+
+    def __post_init__(self) -> None:
+        free = np.zeros(3, dtype=np.bool_)
+        free[: len(self.free)] = np.asarray(self.free, dtype=np.bool_)[:3]
+        load = np.zeros(3)
+        load[: len(self.load)] = np.asarray(self.load, dtype=float)[:3]
+        self.free, self.load = free, load
+        for name in ("mass", "inertia"):
+            if not (math.isfinite(getattr(self, name)) and getattr(self, name) > 0):
+                raise InputError(name, getattr(self, name), "a positive finite value")
 
     @property
     def reach(self) -> float:
@@ -147,4 +161,5 @@ class BodyState:
             self.load.copy(),
             self.friction,
             self.width,
+            self.inertia,
         )

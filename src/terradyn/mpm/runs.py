@@ -415,7 +415,7 @@ def _wheel_bed(seg, c: _Common, travel, v_forward, bed_depth, bed_length):
     check_positive("bed_length", bed_length)
     x_start = -0.5 * travel if v_forward >= 0 else 0.5 * travel
     grid = BedGrid(bed_length, bed_depth, 2.0 * reach + 4 * h, h, -0.5 * bed_length, c.walls)
-    if abs(x_start) + travel * 0.5 + reach > 0.5 * bed_length:
+    if 0.5 * travel + reach > 0.5 * bed_length:
         raise InputError(
             "bed_length", bed_length, f"at least {travel + 2 * reach:.4g} m", "the wheel leaves the bed"
         )
@@ -424,7 +424,7 @@ def _wheel_bed(seg, c: _Common, travel, v_forward, bed_depth, bed_length):
     return grid, pose0
 
 
-def _wheel_summary(runner, width, seg, average_fraction, omega, radius, load):
+def _wheel_summary(runner, width, seg, average_fraction, radius, load):
     """Time series with wheel columns, and the summary averaged over the end of the drive."""
     series = _series(runner, width, skip_phases=1)
     poses = zip(series["x_m"], series["z_m"], series["theta_rad"], strict=True)
@@ -438,13 +438,14 @@ def _wheel_summary(runner, width, seg, average_fraction, omega, radius, load):
     drive = np.flatnonzero(series["phase"] == "drive")
     sel = drive[int(len(drive) * (1.0 - average_fraction)) :]
     vx = float(series["vx_m_s"][sel].mean())
+    omega = float(series["omega_rad_s"][sel].mean())
     summary = {
         "sinkage_m": float(series["sinkage_m"][sel].mean()),
         "drawbar_pull_N": float(series["drawbar_pull_N"][sel].mean()),
         "drive_torque_Nm": float(series["drive_torque_Nm"][sel].mean()),
         "force_z_N": float(series["force_z_N"][sel].mean()),
         "load_N": float(load),
-        "omega_rad_s": float(omega),
+        "omega_rad_s": omega,
         "forward_speed_m_s": vx,
     }
     if omega != 0:
@@ -457,8 +458,12 @@ def run_wheel(
     material: Material | GranularModel,
     *,
     load: float,
-    omega: float,
+    omega: float | None = None,
     slip: float | None = None,
+    drive_torque: float | None = None,
+    drawbar_load: float = 0.0,
+    max_omega: float = 5.0,
+    inertia: float | None = None,
     duration: float | None = None,
     sink_time: float | None = None,
     average_fraction: float = 0.5,
@@ -497,6 +502,14 @@ def run_wheel(
     default ``duration`` is ``3 / |omega|``: starting from the pit it sank into, a wheel's pull and
     sinkage settle after about two radians of rotation (measured for a 0.13 m wheel on MS).
 
+    Torque control: give ``drive_torque`` [N m] (+ drives forward) instead of ``omega``; the spin is
+    then free, with moment of inertia ``inertia`` [kg m^2] (default a uniform disc of the load's mass,
+    ``load / g r^2 / 2``), starting from rest, and the forward motion is free. The time step is sized
+    for spins up to ``max_omega`` [rad/s]; a wheel that spins up beyond it (a torque the bed cannot
+    resist) stops the run with :class:`~terradyn.mpm.MPMInstabilityError`. The default duration is
+    then ``20 sqrt(r / g)``. ``drawbar_load`` [N] is a horizontal resisting force on the axle (a towed
+    load, + backwards) whenever the forward motion is free.
+
     The summary averages the last ``average_fraction`` of the drive: ``sinkage_m`` (depth of the
     lowest point below z = 0), ``drawbar_pull_N`` (horizontal soil force, + forward),
     ``drive_torque_Nm`` (= -soil torque about +y at the axle), ``force_z_N``, ``slip`` (measured).
@@ -514,40 +527,71 @@ def run_wheel(
     c, eff = _common(wheel, material, *shared, overrides)
     h = c.cell_size
     check_positive("load", load)
-    omega = check_range("omega", omega, -200.0, 200.0, unit="rad/s")
+    torque_mode = drive_torque is not None
+    if (omega is None) == (drive_torque is None):
+        raise InputError("omega", omega, "exactly one of omega or drive_torque", "give one of them")
+    torque, omega_cmd = 0.0, 0.0
+    if drive_torque is not None:
+        torque = check_range("drive_torque", drive_torque, -1e6, 1e6, unit="N m")
+        if slip is not None:
+            raise InputError("slip", slip, "None with drive_torque", "the spin is free under a torque")
+        check_range("max_omega", max_omega, 1e-3, 200.0, unit="rad/s")
+    elif omega is not None:
+        omega_cmd = check_range("omega", omega, -200.0, 200.0, unit="rad/s")
     if slip is not None:
         slip = check_range("slip", slip, -1.0, 1.0)
+        if drawbar_load != 0.0:
+            raise InputError(
+                "drawbar_load", drawbar_load, "0 when slip is given", "the forward speed is imposed"
+            )
+    check_range("drawbar_load", drawbar_load, -10.0 * load, 10.0 * load, unit="N")
     check_range("average_fraction", average_fraction, 0.05, 1.0)
     radius = _nominal_radius(wheel)
     seg = body_segments(eff, h)
     reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
+    spin = max_omega if torque_mode else abs(omega_cmd)  # the largest spin the step must resolve
     if duration is None:
-        duration = 3.0 / abs(omega) if omega != 0 else 20.0 * math.sqrt(reach / c.gravity)
+        duration = 3.0 / spin if not torque_mode and spin != 0 else 20.0 * math.sqrt(reach / c.gravity)
     check_positive("duration", duration)
     sink_time = 3.0 * math.sqrt(reach / c.gravity) if sink_time is None else sink_time
     check_positive("sink_time", sink_time, allow_zero=True)
-    v_forward = (1.0 - slip) * omega * radius if slip is not None else omega * radius
-    grid, pose0 = _wheel_bed(seg, c, abs(v_forward) * duration, v_forward, bed_depth, bed_length)
+    if torque_mode:
+        v_forward = 0.0
+        travel = spin * radius * duration
+    else:
+        v_forward = (1.0 - slip) * omega_cmd * radius if slip is not None else omega_cmd * radius
+        travel = abs(v_forward) * duration
+    direction = v_forward if not torque_mode else (1.0 if torque >= 0 else -1.0)
+    grid, pose0 = _wheel_bed(seg, c, travel, direction, bed_depth, bed_length)
     model = c.model
-    v_max = abs(omega) * reach + abs(v_forward) + math.sqrt(2 * c.gravity * h)
+    v_max = spin * reach + (spin * radius if torque_mode else abs(v_forward)) + math.sqrt(2 * c.gravity * h)
     dt = stable_time_step(model, h, cfl=c.cfl, speed=v_max)
     mass = load / c.gravity / wheel.width
+    inertia_w = (
+        0.5 * mass * radius**2 if inertia is None else check_positive("inertia", inertia) / wheel.width
+    )
     state = BodyState(
         seg=seg,
         pose=pose0,
         twist=np.zeros(3),
-        free=np.zeros(2, dtype=np.bool_),
+        free=np.zeros(3, dtype=np.bool_),
         mass=mass,
-        load=np.array([0.0, -load / wheel.width]),
+        load=np.array([-drawbar_load / wheel.width, -load / wheel.width, torque / wheel.width]),
         friction=model.surface_friction,
         width=wheel.width,
+        inertia=inertia_w,
     )
     wave = model.wave_speed()
-    drive_twist = (v_forward if slip is not None else 0.0, 0.0, omega)
+    drive_twist = (v_forward if slip is not None else 0.0, 0.0, omega_cmd)
     phases = [
         *_settle_phases(c, grid.depth, settle_time, dt),
-        Phase("sink", max(1, round(sink_time / dt)), damping=wave / grid.depth, free=(False, True)),
-        Phase("drive", max(1, round(duration / dt)), twist=drive_twist, free=(slip is None, True)),
+        Phase("sink", max(1, round(sink_time / dt)), damping=wave / grid.depth, free=(False, True, False)),
+        Phase(
+            "drive",
+            max(1, round(duration / dt)),
+            twist=drive_twist,
+            free=(slip is None, True, torque_mode),
+        ),
     ]
     interval = (
         duration / 200.0 if record_interval is None else check_positive("record_interval", record_interval)
@@ -558,11 +602,29 @@ def run_wheel(
         s_int = duration / 20.0 if snapshot_interval is None else snapshot_interval
         snap_every = max(1, round(check_positive("snapshot_interval", s_int) / (record_every * dt)))
     io = (snapshot_dir, snap_every, checkpoint_path, checkpoint_interval, progress)
-    key = ("wheel", repr(eff), wheel.width, model, load, omega, slip, duration, sink_time, settle_time)
+    key = (
+        "wheel",
+        repr(eff),
+        wheel.width,
+        model,
+        load,
+        omega,
+        slip,
+        drive_torque,
+        drawbar_load,
+        max_omega if torque_mode else None,
+        inertia_w,
+        duration,
+        sink_time,
+        settle_time,
+    )
     runner = _runner(c, grid, state, dt, phases, record_every, v_max, io, key)
     runner.frame_every = _frame_every(frame_count, phases[-1].n_steps, record_every)
     wall = _execute(runner, resume)
-    series, summary = _wheel_summary(runner, wheel.width, seg, average_fraction, omega, radius, load)
+    series, summary = _wheel_summary(runner, wheel.width, seg, average_fraction, radius, load)
+    summary["drawbar_load_N"] = float(drawbar_load)
+    if torque_mode:
+        summary["applied_torque_Nm"] = torque
     meta = _metadata(runner, model, wheel, eff, wall)
-    meta["mode"] = "forced-slip" if slip is not None else "self-propelled"
+    meta["mode"] = "torque-driven" if torque_mode else "forced-slip" if slip is not None else "self-propelled"
     return WheelResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())

@@ -223,13 +223,13 @@ def stable_time_step(
 @dataclass(frozen=True, slots=True)
 class Phase:
     """A stretch of the run: ``n_steps`` with grid ``damping`` [1/s]; at its start the body gets
-    ``twist`` (vx, vz, omega) and ``free`` (x, z) flags (None: keep)."""
+    ``twist`` (vx, vz, omega) and ``free`` flags, (x, z) or (x, z, spin) (None: keep)."""
 
     name: str
     n_steps: int
     damping: float = 0.0
     twist: tuple[float, float, float] | None = None
-    free: tuple[bool, bool] | None = None
+    free: tuple[bool, ...] | None = None
 
 
 @dataclass
@@ -289,7 +289,7 @@ class Runner:
         self.particles = ParticleState.from_arrays(data)
         self.body.pose[:] = data["b_pose"]
         self.body.twist[:] = data["b_twist"]
-        self.body.free[:] = data["b_free"]
+        self.body.free[: len(data["b_free"])] = data["b_free"]
         self.step = int(data["step"])
         self.rows = [list(r) for r in data["rows"]]
         return True
@@ -342,7 +342,8 @@ class Runner:
                 if phase.twist is not None:
                     self.body.twist[:] = phase.twist
                 if phase.free is not None:
-                    self.body.free[:] = phase.free
+                    self.body.free[:] = False
+                    self.body.free[: len(phase.free)] = phase.free
             while start <= self.step < stop:
                 n = min(self.record_every, stop - self.step)
                 self._chunk(index, phase, n)
@@ -399,6 +400,7 @@ class Runner:
             b.pose,
             b.twist,
             b.mass,
+            b.inertia,
             b.free,
             b.load,
             b.reach + 2.0 * self.grid.cell_size,
@@ -451,6 +453,24 @@ class Runner:
                 f"CFL violation {where}: (c + |v|max) dt / h = {cfl:.3f} > {CFL_LIMIT} "
                 f"(|v|max = {vmax:.3g} m/s){keep}; reduce cfl"
             )
+        if self.has_body:
+            lo_x, hi_x, lo_z, hi_z = self.grid.bounds
+            r = self.body.reach
+            x, z = self.body.pose[0], self.body.pose[1]
+            if not (lo_x + r <= x <= hi_x - r and lo_z + r <= z <= hi_z - r):
+                raise MPMInstabilityError(
+                    f"the body left the grid {where}: origin at ({x:.4g}, {z:.4g}) m, reach {r:.4g} m, "
+                    f"grid [{lo_x:.4g}, {hi_x:.4g}] x [{lo_z:.4g}, {hi_z:.4g}] m{keep}; enlarge the bed"
+                )
+        if self.has_body and self.reference_speed > 0:
+            b = self.body
+            speed = math.hypot(b.twist[0], b.twist[1]) + abs(b.twist[2]) * b.reach
+            if speed > 1.5 * self.reference_speed:
+                raise MPMInstabilityError(
+                    f"the body runs away {where}: point speed {speed:.3g} m/s is beyond 1.5 x the "
+                    f"{self.reference_speed:.3g} m/s the time step was sized for (a free spin or "
+                    f"translation under a load the bed cannot resist){keep}"
+                )
         v_ref = self.reference_speed + math.sqrt(self.gravity * self.grid.depth)
         ke = 0.5 * float(np.sum(p.mass * (p.vel**2).sum(axis=1))) / float(np.sum(p.mass))
         if ke > 50.0 * v_ref**2:
