@@ -53,7 +53,7 @@ def map_items(
         ) from None
     cluster: Any = None
     if scheduler == "local":
-        n = workers or max(1, min(len(items), os.cpu_count() or 1))
+        n = _worker_count(items, workers)
         cluster = LocalCluster(
             n_workers=n,
             threads_per_worker=1,
@@ -65,7 +65,9 @@ def map_items(
         client = Client(cluster)
     else:
         if "://" not in scheduler:
-            raise InputError("scheduler", scheduler, "'serial', 'processes', 'local' or an address like tcp://host:8786")
+            raise InputError(
+                "scheduler", scheduler, "'serial', 'processes', 'local' or an address like tcp://host:8786"
+            )
         try:
             client = Client(scheduler, timeout="10s")
         except OSError as exc:
@@ -92,7 +94,7 @@ def _process_pool(
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    n = workers or max(1, min(len(items), os.cpu_count() or 1))
+    n = _worker_count(items, workers)
     results: list[Any] = [None] * len(items)
     ctx = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(max_workers=n, mp_context=ctx) as pool:
@@ -102,3 +104,8 @@ def _process_pool(
             if on_done is not None:
                 on_done(1)
     return results
+
+
+def _worker_count(items: Sequence[Any], workers: int | None) -> int:
+    """``workers``, or one per item up to the number of CPUs."""
+    return workers or max(1, min(len(items), os.cpu_count() or 1))

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import Protocol, runtime_checkable
 
+from .errors import InputError, check_positive
 from .geometry import Body
 from .kinematics import Pose2D, Twist2D, Wrench2D
 
@@ -69,8 +70,6 @@ class Stateless:
     """
 
     def __init__(self, model: TerrainModel) -> None:
-        from .errors import InputError
-
         if not isinstance(model, TerrainModel):
             raise InputError("model", model, "a terrain model with a wrench(body, pose, twist) method")
         self.model = model
@@ -91,8 +90,6 @@ class Stateless:
         *,
         about: tuple[float, float] | None = None,
     ) -> Wrench2D:
-        from .errors import InputError, check_positive
-
         if self._body is None:
             raise InputError("terrain", "not initialised", "call init(body, pose) before stepping")
         check_positive("dt", dt)

@@ -92,6 +92,15 @@ class BedGrid:
     def x_right(self) -> float:
         return self.x_left + (self.shape[0] - 1 - 2 * GRID_PAD) * self.cell_size
 
+    def holds(self, x: float, z: float, reach: float) -> bool:
+        """True if a body of ``reach`` [m] with its origin at (x, z) lies inside the particle bounds."""
+        lo_x, hi_x, lo_z, hi_z = self.bounds
+        return bool(lo_x + reach <= x <= hi_x - reach and lo_z + reach <= z <= hi_z - reach)
+
+    def describe_bounds(self) -> str:
+        lo_x, hi_x, lo_z, hi_z = self.bounds
+        return f"[{lo_x:.4g}, {hi_x:.4g}] x [{lo_z:.4g}, {hi_z:.4g}] m"
+
     @property
     def bounds(self) -> np.ndarray:
         """(x_min, x_max, z_min, z_max) [m] that particles are kept within."""
@@ -454,13 +463,12 @@ class Runner:
                 f"(|v|max = {vmax:.3g} m/s){keep}; reduce cfl"
             )
         if self.has_body:
-            lo_x, hi_x, lo_z, hi_z = self.grid.bounds
             r = self.body.reach
             x, z = self.body.pose[0], self.body.pose[1]
-            if not (lo_x + r <= x <= hi_x - r and lo_z + r <= z <= hi_z - r):
+            if not self.grid.holds(x, z, r):
                 raise MPMInstabilityError(
                     f"the body left the grid {where}: origin at ({x:.4g}, {z:.4g}) m, reach {r:.4g} m, "
-                    f"grid [{lo_x:.4g}, {hi_x:.4g}] x [{lo_z:.4g}, {hi_z:.4g}] m{keep}; enlarge the bed"
+                    f"grid {self.grid.describe_bounds()}{keep}; enlarge the bed"
                 )
         if self.has_body and self.reference_speed > 0:
             b = self.body

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
@@ -217,16 +216,12 @@ class MPMTerrain:
         return runner, eff, state
 
     def _check_inside(self, state: BodyState, pose: Pose2D, field: str) -> None:
-        x, z = pose.x, pose.z
-        r = state.reach
-        g = self.grid
-        lo_x, hi_x, lo_z, hi_z = g.bounds
-        if not (lo_x + r <= x <= hi_x - r and lo_z + r <= z <= hi_z - r):
+        if not self.grid.holds(pose.x, pose.z, state.reach):
             raise InputError(
                 field,
-                f"(x={x:.4g}, z={z:.4g})",
-                f"a body origin at least its reach {r:.4g} m inside the grid "
-                f"[{lo_x:.4g}, {hi_x:.4g}] x [{lo_z:.4g}, {hi_z:.4g}] m",
+                f"(x={pose.x:.4g}, z={pose.z:.4g})",
+                f"a body origin at least its reach {state.reach:.4g} m inside the grid "
+                f"{self.grid.describe_bounds()}",
                 "enlarge the bed or the air above it",
             )
 
@@ -340,16 +335,3 @@ class MPMTerrain:
             f"MPMTerrain(bed {g.width:g} x {g.depth:g} m, cell {g.cell_size:g} m, "
             f"dt {self.dt:.3g} s, {state})"
         )
-
-    def describe(self) -> dict[str, Any]:
-        """Settings as plain values (for metadata)."""
-        g = self.grid
-        return {
-            "model": "terradyn MPM (stateful terrain)",
-            "granular_model": repr(self.model),
-            "cell_size_m": g.cell_size,
-            "bed_width_m": g.width,
-            "bed_depth_m": g.depth,
-            "dt_s": self.dt,
-            "particles": len(self._runner.particles) if self._runner is not None else 0,
-        }

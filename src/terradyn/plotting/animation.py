@@ -68,12 +68,7 @@ def animate_body(
     from ..kinematics import Pose2D, Twist2D, to_world
     from ..rft import rft_element_forces
 
-    p = Path(path)
-    suffix = p.suffix.lower()
-    if suffix not in (".gif", ".mp4"):
-        raise InputError("--animate", str(path), "a file ending in .gif or .mp4")
-    if p.parent and not p.parent.exists():
-        raise InputError("--animate", str(path), "a path in an existing folder")
+    p = check_animation_path(path)
     if not (isinstance(frames, int) and 2 <= frames <= 2000):
         raise InputError("frames", frames, "an integer in [2, 2000]")
     idx = np.unique(np.linspace(0, len(result.t) - 1, frames).round().astype(int))

@@ -9,8 +9,9 @@ import numpy as np
 from pydantic import Field
 
 from .. import materials
-from ..geometry import Plate, WheelCircular
+from ..geometry import Body, Plate, WheelCircular
 from ..locomotion import wheel_steady
+from ..mpm.bodies import effective_body
 from ..results import TableResult
 from ..rft import li2013_alpha_material
 from .registry import StudyOutput, _Params, register_study
@@ -69,7 +70,8 @@ def mpm_alpha_map(
     out = map_items(_alpha_point, jobs, scheduler=scheduler, workers=workers)
     norm = length * width * depth
     rft = [li2013_alpha_material(-math.radians(a), math.radians(g), mat) for a, g in grid]
-    body = _mpm_plate(length, width, thick, cell_size)
+    body = effective_body(Plate(length, width, thickness=thick), cell_size)
+    assert isinstance(body, Plate)
     rft_body = [_rft_on_body(body, mat, a, g, depth) for a, g in grid]
     cols = {
         "angle_deg": np.array([a for a, _ in grid], dtype=float),
@@ -96,14 +98,7 @@ def mpm_alpha_map(
     return TableResult(cols, meta)
 
 
-def _mpm_plate(length: float, width: float, thickness: float, cell_size: float) -> Plate:
-    """The plate as MPM resolves it (at least three cells thick)."""
-    from ..mpm.bodies import PLATE_MIN_CELLS
-
-    return Plate(length, width, thickness=max(thickness, PLATE_MIN_CELLS * cell_size))
-
-
-def _rft_on_body(body: Plate, mat, angle_deg: float, direction_deg: float, depth: float):
+def _rft_on_body(body: Body, mat, angle_deg: float, direction_deg: float, depth: float):
     """RFT force (fx, fz) [N] on ``body`` with its centre at ``depth`` moving along the direction."""
     from ..kinematics import Pose2D, Twist2D
     from ..rft import rft_wrench
