@@ -2,12 +2,22 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from terradyn.errors import InputError
 from terradyn.mpm.bodies import body_segments_world
 from terradyn.plotting.mpm import animate_frames, plot_fields
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    import matplotlib.pyplot as plt
+
+    yield
+    plt.close("all")
 
 
 def _frame(t: float) -> dict:
@@ -49,3 +59,50 @@ def test_animate_frames_writes_gif_atomically(tmp_path):
         animate_frames([_frame(0.0)], tmp_path / "b.gif")
     with pytest.raises(InputError, match="gif"):
         animate_frames([_frame(0.0), _frame(0.1)], tmp_path / "b.avi")
+
+
+@pytest.fixture(scope="module")
+def mpm_runs():
+    """A small real intrusion and a short forced-slip wheel run (a few seconds together)."""
+    from mpm_reference import MODEL
+    from terradyn.geometry import Plate, WheelCircular
+    from terradyn.mpm import run_intrusion, run_wheel
+
+    fast = dict(cell_size=0.01, bed_width=0.2, bed_depth=0.12, settle_time=0.02)
+    intrusion = run_intrusion(Plate(0.08, 0.1), MODEL, depth=0.02, speed=0.2, **fast)
+    wheel = run_wheel(
+        WheelCircular(0.05, 0.05), MODEL, load=5.0, omega=2.0, slip=0.3, cell_size=0.01, duration=0.1
+    )
+    return intrusion, wheel
+
+
+def test_mpm_wheel_history_has_one_panel_per_unit(mpm_runs):
+    from terradyn.plotting.mpm import plot_mpm_history
+
+    fig = plot_mpm_history(mpm_runs[1], kind="wheel", title="wheel")
+    ylabels = [ax.get_ylabel() for ax in fig.axes]
+    assert ylabels == ["force [N]", "torque [N m]", "sinkage [mm]", "slip [-]"]
+    assert fig.axes[-1].get_xlabel() == "time [s]"
+    assert all(ax.get_legend() is not None for ax in fig.axes)
+    assert fig.axes[0].get_shared_x_axes().joined(fig.axes[0], fig.axes[-1])
+    slip = fig.axes[3].lines[0].get_ydata()
+    assert np.nanmax(np.abs(np.asarray(slip) - 0.3)) < 1e-6  # forced slip, radius recovered
+    # no radius given, none in the metadata and no slip in the summary: the slip panel is left out
+    bare = dataclasses.replace(mpm_runs[1], summary={"load_N": 5.0})
+    assert len(plot_mpm_history(bare, kind="wheel").axes) == 3
+    assert len(plot_mpm_history(bare, kind="wheel", radius=0.05).axes) == 4
+
+
+def test_mpm_intrusion_history_plots_force_and_torque_versus_depth(mpm_runs):
+    from terradyn.plotting.mpm import plot_mpm_history
+
+    fig = plot_mpm_history(mpm_runs[0], kind="intrusion")
+    assert [ax.get_ylabel() for ax in fig.axes] == ["force on body [N]", "torque [N m]"]
+    assert "[mm]" in fig.axes[-1].get_xlabel()
+    assert all(ax.get_legend() is not None for ax in fig.axes)
+    depth_mm = fig.axes[0].lines[0].get_xdata()
+    np.testing.assert_allclose(depth_mm, mpm_runs[0].series["depth_m"] * 1e3)
+    with pytest.raises(InputError, match="kind"):
+        plot_mpm_history(mpm_runs[0], kind="plate")
+    with pytest.raises(InputError, match="result"):
+        plot_mpm_history(mpm_runs[0], kind="wheel")

@@ -101,7 +101,7 @@ def _plate_depth(p: PlateDepthParams) -> StudyOutput:
 
 
 def _alpha_map(p: AlphaMapParams) -> StudyOutput:
-    from ..plotting import plot_alpha_map
+    from ..plotting import plot_alpha_maps
     from .intrusion import alpha_map_plate
 
     mat = materials.get(p.material)
@@ -109,17 +109,16 @@ def _alpha_map(p: AlphaMapParams) -> StudyOutput:
     angles = np.radians(np.arange(-90.0, 90.0 + 1e-9, step))
     dirs = np.radians(np.arange(0.0, 180.0 + 1e-9, step))
     t = alpha_map_plate(mat, angles=angles, directions=dirs, depth=p.depth_m)
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
     shape = (angles.size, dirs.size)
-    b = t.columns["angle_rad"].reshape(shape)
-    g = t.columns["direction_rad"].reshape(shape)
-    plot_alpha_map(b, g, t.columns["alpha_z_N_per_m3"].reshape(shape), label=r"$\alpha_z$", ax=axes[0])
-    plot_alpha_map(b, g, t.columns["alpha_x_N_per_m3"].reshape(shape), label=r"$\alpha_x$", ax=axes[1])
-    for ax in axes:
-        ax.set_xlabel("plate angle [deg]")
-        ax.set_ylabel("direction of motion [deg below +x]")
+    fig = plot_alpha_maps(
+        t.columns["angle_rad"].reshape(shape),
+        t.columns["direction_rad"].reshape(shape),
+        t.columns["alpha_x_N_per_m3"].reshape(shape),
+        t.columns["alpha_z_N_per_m3"].reshape(shape),
+        title=f"Plate stress per depth (RFT), {mat.name}, depth {p.depth_m * 1e3:g} mm",
+        xlabel="plate angle [deg]",
+        ylabel="direction of motion [deg below +x]",
+    )
     out = StudyOutput({"alpha_map": t}, {"alpha_map": fig})
     out.summary.append(
         {
