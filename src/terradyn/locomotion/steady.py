@@ -39,7 +39,8 @@ class WheelSteadyResult:
     Attributes (SI)
     ---------------
     model : terrain model name; slip [-]; load_N; omega_rad_s; forward_velocity_m_s;
-    sinkage_m : depth of the wheel's lowest point below the undisturbed surface (period average);
+    sinkage_m : depth of the wheel's lowest point below the undisturbed surface (period average; a
+    phase with the lowest point above the surface counts 0, so sinkage is never negative);
     axle_height_m : axle height above the surface; drawbar_pull_N : horizontal soil force, + forward;
     drive_torque_Nm : motor torque, + driving forward; power_W = drive_torque * omega;
     tractive_efficiency = drawbar_pull * V / power (0 when power <= 0);
@@ -244,7 +245,9 @@ def wheel_steady(
     w = fn.phases(z)
     dp, fz, tsoil = w[:, 0], w[:, 1], w[:, 2]
     drive = -tsoil
-    sink = surface - (z + lowest)
+    # A phase whose lowest point is above the surface (a C-leg swinging over the hip) has sinkage 0,
+    # not a negative depth: clamp before averaging.
+    sink = np.maximum(surface - (z + lowest), 0.0)
     mean_dp, mean_drive = float(dp.mean()), float(drive.mean())
     power = mean_drive * omega
     eff = mean_dp * twist.vx / power if power > 0 else 0.0
