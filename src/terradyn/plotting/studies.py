@@ -1,0 +1,132 @@
+"""Figures of the optimisation and the high-speed study (each returns a matplotlib Figure)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from .core import new_figure
+
+__all__ = ["plot_high_speed", "plot_optimization"]
+
+# Display name, scale from the stored SI value, unit, of the parameters the optimiser varies.
+_PARAMETERS: dict[str, tuple[str, float, str]] = {
+    "flap_count": ("flap count", 1.0, "-"),
+    "flap_length_ratio": ("flap length / hub radius", 1.0, "-"),
+    "flap_angle": ("flap angle", 180.0 / math.pi, "deg"),
+}
+_METRICS: dict[str, str] = {
+    "velocity": r"normalised speed $V / (\omega R_{out})$ [-]",
+    "cost-of-transport": r"cost of transport $P / (W V)$ [-]",
+}
+
+
+def _parameter(name: str) -> tuple[str, float]:
+    label, scale, unit = _PARAMETERS.get(name, (name.replace("_", " "), 1.0, "-"))
+    return f"{label} [{unit}]", scale
+
+
+def plot_optimization(result: Any, names: Sequence[str], metric: str) -> Any:
+    """Convergence of a design optimisation and its objective over two of the parameters.
+
+    ``result`` is an :class:`~terradyn.optimize.OptimizationResult` (e.g. of
+    :func:`~terradyn.optimize.optimize_flapped_wheel`), ``names`` the two parameters of the map
+    (angles are shown in degrees), ``metric`` the objective's name ("velocity", "cost-of-transport" or
+    any label). Left: the best objective per generation; right: every feasible evaluation coloured by
+    its objective, infeasible ones as grey crosses, the best design as a star. Returns the Figure.
+    """
+    names = list(names)
+    cols = result.evaluations.columns
+    if len(names) != 2 or names[0] == names[1] or any(n not in cols for n in names):
+        raise InputError(
+            "names", names, f"two different parameters from {[k for k in cols if k in _PARAMETERS]}"
+        )
+    ylabel = _METRICS.get(metric, f"{metric} [-]")
+    fig, axes = new_figure(1, 2, figsize=(11.0, 4.4))
+    a0, a1 = axes[0]
+    gen = np.arange(1, len(result.trace) + 1)
+    a0.plot(gen, result.trace, marker="o", label="best of generation")
+    a0.axhline(result.best_value, color="0.5", ls="--", lw=0.9, label=f"final best = {result.best_value:.4g}")
+    a0.set_xlabel("generation [-]")
+    a0.set_ylabel(ylabel)
+    a0.set_title("convergence (" + ("maximised" if result.maximize else "minimised") + ")")
+    if len(gen):
+        a0.set_xticks(gen if len(gen) <= 15 else gen[:: math.ceil(len(gen) / 15)])
+    a0.grid(True, alpha=0.35)
+    a0.legend(fontsize=8)
+    (xl, xs), (yl, ys) = _parameter(names[0]), _parameter(names[1])
+    ok = np.asarray(cols["feasible"]).astype(bool)
+    x, y = np.asarray(cols[names[0]], dtype=float) * xs, np.asarray(cols[names[1]], dtype=float) * ys
+    if np.any(~ok):
+        a1.plot(x[~ok], y[~ok], "x", color="0.6", ms=4, label="infeasible")
+    sc = a1.scatter(
+        x[ok], y[ok], c=np.asarray(cols["objective"])[ok], cmap="viridis", s=16, label="evaluated"
+    )
+    a1.plot(
+        [result.best[names[0]] * xs],
+        [result.best[names[1]] * ys],
+        "*",
+        color="tab:red",
+        mec="k",
+        ms=15,
+        label="best",
+    )
+    fig.colorbar(sc, ax=a1, label=ylabel)
+    a1.set_xlabel(xl)
+    a1.set_ylabel(yl)
+    a1.set_title("objective over the evaluated designs")
+    a1.grid(True, alpha=0.35)
+    a1.legend(fontsize=8)
+    return fig
+
+
+_HIGH_SPEED = (
+    ("velocity_normalised", r"speed $V / \sqrt{g \ell}$ [-]"),
+    ("slip", "slip [-]"),
+    ("sinkage_normalised", r"sinkage / $\ell$ [-]"),
+)
+
+
+def plot_high_speed(result: Any) -> Any:
+    """Steady speed, slip and sinkage versus normalised spin of a high-speed sweep, one line per model.
+
+    ``result`` is a :class:`~terradyn.studies.high_speed.HighSpeedResult`; ell is the wheel's outer
+    diameter. A dashed vertical line in the model's colour marks its slip onset where one was found.
+    Returns the Figure.
+    """
+    c = result.table.columns
+    normalised = "omega_normalised" in c
+    keys = [(k, lab) for k, lab in _HIGH_SPEED if k in c]
+    fig, axes = new_figure(1, len(keys), figsize=(4.6 * len(keys), 4.0), sharex=True)
+    onsets = getattr(result, "onsets", {}) or {}
+    for k, model in enumerate(dict.fromkeys(np.asarray(c["model"]).tolist())):
+        m = np.asarray(c["model"]) == model
+        x = np.asarray(c["omega_normalised" if normalised else "omega_rad_s"], dtype=float)[m]
+        order = np.argsort(x)
+        onset = onsets.get(model, {}).get("omega_onset_normalised" if normalised else "omega_onset_rad_s")
+        for ax, (key, _) in zip(axes[0], keys, strict=True):
+            ax.plot(
+                x[order],
+                np.asarray(c[key], dtype=float)[m][order],
+                marker="o",
+                ms=4,
+                color=f"C{k}",
+                label=model.upper(),
+            )
+            if onset is not None and np.isfinite(onset):
+                ax.axvline(onset, color=f"C{k}", ls="--", lw=0.9, label=f"{model.upper()} slip onset")
+    material = result.table.metadata.get("material", "")
+    for ax, (_, label) in zip(axes[0], keys, strict=True):
+        ax.set_xlabel(r"spin $\omega \sqrt{\ell / g}$ [-]" if normalised else r"spin $\omega$ [rad/s]")
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.35)
+    axes[0, 0].legend(fontsize=8)
+    wheel = result.table.metadata.get("wheel", {})
+    ell = wheel.get("outer_diameter") if isinstance(wheel, dict) else None
+    size = rf", $\ell$ = {ell * 1e3:g} mm" if ell else ""
+    fig.suptitle(f"Grousered wheel at high spin, {material}{size}".replace(", ,", ","))
+    return fig
