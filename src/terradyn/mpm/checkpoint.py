@@ -1,15 +1,23 @@
 """Checkpoints (resume a killed run) and particle snapshots (NetCDF via xarray), written atomically.
 
-A checkpoint is one ``.npz`` file holding the particle and body arrays, the step counter and the rows
-recorded so far, plus a fingerprint of the run's inputs: resuming with different inputs is refused.
-Every file is written to a temporary name in the same directory and moved into place with
-:func:`os.replace`, so a kill never leaves a half-written file behind.
+A checkpoint is one ``.npz`` file holding the particle and body arrays, the step counter, the rows
+and animation frames recorded so far, and the inputs that identify the run as JSON (``__inputs__``,
+with its SHA-256 in ``__fingerprint__``): resuming with different inputs is refused with a message
+naming the inputs that differ. Every file is written to a temporary name in the same directory and
+moved into place with :func:`os.replace`, so a kill never leaves a half-written file behind.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import enum
+import hashlib
+import json
+import math
 import os
 import tempfile
+import zipfile
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -17,7 +25,23 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["atomic_write", "load_checkpoint", "read_snapshot", "save_checkpoint", "write_snapshot"]
+__all__ = [
+    "CHECKPOINT_FORMAT",
+    "atomic_write",
+    "input_differences",
+    "load_checkpoint",
+    "plain",
+    "read_snapshot",
+    "save_checkpoint",
+    "write_snapshot",
+]
+
+#: Format tag stored in every checkpoint (``__format__``).
+CHECKPOINT_FORMAT = "terradyn-mpm-checkpoint-2"
+#: Differences listed in a mismatch message before "and N more".
+_MAX_LISTED = 4
+#: Errors of reading a damaged or foreign file (never let one escape raw).
+_READ_ERRORS = (zipfile.BadZipFile, ValueError, OSError, KeyError, EOFError)
 
 
 def atomic_write(path: str | Path, write: Any, *, suffix: str = ".tmp") -> Path:
@@ -36,10 +60,52 @@ def atomic_write(path: str | Path, write: Any, *, suffix: str = ".tmp") -> Path:
     return p
 
 
-def save_checkpoint(path: str | Path, arrays: dict[str, np.ndarray], fingerprint: str) -> Path:
-    """Write ``arrays`` and the run ``fingerprint`` to ``path`` (.npz) atomically."""
+def plain(value: Any) -> Any:
+    """``value`` as JSON-able data: dataclasses become dicts (with their ``type``), enums their value,
+    NumPy scalars and arrays Python numbers and lists, paths strings, tuples lists."""
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        out: dict[str, Any] = {"type": type(value).__name__}
+        for f in dataclasses.fields(value):
+            out[f.name] = plain(getattr(value, f.name))
+        return out
+    if isinstance(value, enum.Enum):
+        return plain(value.value)
+    if isinstance(value, bool | np.bool_):
+        return bool(value)
+    if isinstance(value, int | np.integer):
+        return int(value)
+    if isinstance(value, float | np.floating):
+        return float(value)
+    if isinstance(value, str | Path):
+        return str(value)
+    if value is None:
+        return None
+    if isinstance(value, np.ndarray):
+        return plain(value.tolist())
+    if isinstance(value, Mapping):
+        return {str(k): plain(v) for k, v in value.items()}
+    if isinstance(value, Iterable):
+        return [plain(v) for v in value]
+    return repr(value)
+
+
+def _canonical(inputs: Mapping[str, Any] | str) -> tuple[dict[str, Any], str]:
+    """The inputs as loaded back from JSON, and their JSON text (sorted keys)."""
+    data = {"fingerprint": inputs} if isinstance(inputs, str) else plain(inputs)
+    text = json.dumps(data, sort_keys=True, allow_nan=True)
+    return json.loads(text), text
+
+
+def save_checkpoint(
+    path: str | Path, arrays: Mapping[str, np.ndarray], inputs: Mapping[str, Any] | str
+) -> Path:
+    """Write ``arrays`` and the run's ``inputs`` (JSON-able, see :func:`plain`) to ``path`` (.npz)
+    atomically."""
+    _, text = _canonical(inputs)
     payload = {k: np.asarray(v) for k, v in arrays.items()}
-    payload["__fingerprint__"] = np.array(fingerprint)
+    payload["__format__"] = np.array(CHECKPOINT_FORMAT)
+    payload["__inputs__"] = np.array(text)
+    payload["__fingerprint__"] = np.array(hashlib.sha256(text.encode()).hexdigest())
 
     def _write(tmp: str) -> None:
         with open(tmp, "wb") as fh:
@@ -48,19 +114,128 @@ def save_checkpoint(path: str | Path, arrays: dict[str, np.ndarray], fingerprint
     return atomic_write(path, _write, suffix=".npz")
 
 
-def load_checkpoint(path: str | Path, fingerprint: str) -> dict[str, np.ndarray]:
-    """Arrays of a checkpoint written by :func:`save_checkpoint` for the same inputs."""
+def _unreadable(field: str, path: Path, why: str) -> InputError:
+    return InputError(
+        field,
+        str(path),
+        "a readable terradyn checkpoint (.npz)",
+        f"the file is not a readable terradyn checkpoint: {why}; remove it or give another path",
+    )
+
+
+def _read_error(exc: BaseException) -> str:
+    if isinstance(exc, zipfile.BadZipFile | EOFError):
+        return "truncated or not an .npz archive"
+    if isinstance(exc, KeyError):
+        return f"it lacks the entry {exc.args[0] if exc.args else '?'}"
+    if isinstance(exc, OSError):
+        return f"it cannot be read ({exc.strerror or type(exc).__name__})"
+    return "damaged or not an .npz archive"
+
+
+def load_checkpoint(
+    path: str | Path,
+    inputs: Mapping[str, Any] | str,
+    *,
+    required: Iterable[str] = (),
+    field: str = "checkpoint_path",
+) -> dict[str, np.ndarray]:
+    """Arrays of a checkpoint written by :func:`save_checkpoint` for the same ``inputs``.
+
+    Raises :class:`~terradyn.errors.InputError` (on ``field``) if there is no file at ``path``, if it
+    is not a readable terradyn checkpoint holding every ``required`` array, or if it was written for
+    other inputs (the message names them: ``cell_size: checkpoint 0.005, this run 0.004``).
+    """
     p = Path(path)
-    with np.load(p, allow_pickle=False) as data:
-        saved = str(data["__fingerprint__"])
-        if saved != fingerprint:
-            raise InputError(
-                "checkpoint_path",
-                str(p),
-                "a checkpoint written by a run with the same inputs",
-                "delete it or pass resume=False to start afresh",
-            )
-        return {k: data[k].copy() for k in data.files if k != "__fingerprint__"}
+    if not p.is_file():
+        raise InputError(
+            field,
+            str(p),
+            "an existing checkpoint file",
+            f"no checkpoint at {p}"
+            + ("; run without resume to start afresh" if field == "checkpoint_path" else ""),
+        )
+    try:
+        with open(p, "rb") as fh:  # our handle: np.load leaks its own when the zip is damaged
+            loaded = np.load(fh, allow_pickle=False)
+            if not isinstance(loaded, np.lib.npyio.NpzFile):
+                raise _unreadable(field, p, "a single .npy array, not an .npz archive")
+            with loaded as data:
+                arrays = {k: data[k] for k in data.files}
+        for k, v in arrays.items():
+            if not isinstance(v, np.ndarray):  # a member that is not an .npy array comes as bytes
+                raise _unreadable(field, p, f"its entry {k} is not an array")
+        fmt = str(arrays.pop("__format__", ""))
+        text = str(arrays.pop("__inputs__", ""))
+        arrays.pop("__fingerprint__", None)
+        if fmt != CHECKPOINT_FORMAT or not text:
+            raise _unreadable(field, p, "written by another program or an older terradyn")
+        saved = json.loads(text)
+        missing = [k for k in required if k not in arrays]
+        if missing:
+            raise _unreadable(field, p, f"it lacks the entries {', '.join(missing)}")
+    except InputError:
+        raise
+    except _READ_ERRORS as exc:
+        raise _unreadable(field, p, _read_error(exc)) from None
+    current, _ = _canonical(inputs)
+    diffs = input_differences(saved, current)
+    if diffs:
+        listed = "; ".join(diffs[:_MAX_LISTED])
+        more = f" and {len(diffs) - _MAX_LISTED} more" if len(diffs) > _MAX_LISTED else ""
+        raise InputError(
+            field,
+            str(p),
+            "a checkpoint of a run with the same inputs",
+            f"it differs in {listed}{more}; rerun with the checkpoint's inputs or remove the file",
+        )
+    return arrays
+
+
+def _flat(data: Any, prefix: str, out: dict[str, Any]) -> None:
+    if isinstance(data, dict):
+        for k, v in data.items():
+            _flat(v, f"{prefix}.{k}" if prefix else str(k), out)
+    else:
+        out[prefix] = data
+
+
+def _show(value: Any, digits: int = 12) -> str:
+    if isinstance(value, float):
+        return f"{value:.{digits}g}" if math.isfinite(value) else str(value)
+    text = "none" if value is None else str(value) if isinstance(value, str) else json.dumps(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _same(x: Any, y: Any) -> bool:
+    """Equal inputs; 1 and 1.0 are the same number, True and 1 are not."""
+    if isinstance(x, bool) or isinstance(y, bool):
+        return type(x) is type(y) and x == y
+    if isinstance(x, int | float) and isinstance(y, int | float):
+        return bool(x == y)
+    return type(x) is type(y) and bool(x == y)
+
+
+def input_differences(saved: Mapping[str, Any], current: Mapping[str, Any]) -> list[str]:
+    """``"name: checkpoint A, this run B"`` for every input that differs (nested names joined by
+    dots). Inputs under ``derived`` (quantities computed from the others) are listed only when no
+    named input differs; a different ``run`` (another kind of run) is the only difference listed."""
+    a: dict[str, Any] = {}
+    b: dict[str, Any] = {}
+    _flat(dict(saved), "", a)
+    _flat(dict(current), "", b)
+    out = []
+    for key in [*a, *(k for k in b if k not in a)]:
+        if key in a and key in b and _same(a[key], b[key]):
+            continue
+        left = _show(a[key]) if key in a else "absent"
+        right = _show(b[key]) if key in b else "absent"
+        if left == right:  # differ past 12 digits
+            left, right = _show(a[key], 17), _show(b[key], 17)
+        out.append(f"{key}: checkpoint {left}, this run {right}")
+    kind = [d for d in out if d.startswith("run:")]  # another kind of run: nothing else matters
+    named = [d for d in out if not d.startswith("derived.")]
+    return kind or named or out
 
 
 def write_snapshot(path: str | Path, fields: dict[str, np.ndarray], attrs: dict[str, Any]) -> Path:

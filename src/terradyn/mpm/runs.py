@@ -7,7 +7,6 @@ torques are about +y through the body's reference point [N m].
 
 from __future__ import annotations
 
-import hashlib
 import math
 import time
 from dataclasses import dataclass, field
@@ -20,6 +19,7 @@ from ..errors import InputError, check_positive, check_range
 from ..geometry import Body
 from ..materials import Material
 from .bodies import BodyState, body_segments, effective_body, lowest_point
+from .checkpoint import plain
 from .model import BedPacking, GranularModel, Walls, default_settle_time, resolve_model
 from .solver import BedGrid, Phase, ProgressCallback, Runner, make_bed, stable_time_step
 
@@ -122,16 +122,51 @@ def _common(
     return common, effective_body(body, float(cell_size))
 
 
-def _fingerprint(*items: Any) -> str:
-    return hashlib.sha256(repr(items).encode()).hexdigest()
+def _run_inputs(c: _Common, body: Body, named: dict[str, Any]) -> dict[str, Any]:
+    """The inputs that identify a run (stored in its checkpoint): ``named`` inputs of the run
+    function, then the shared settings. Output-only settings (checkpoint interval, snapshots,
+    progress) and post-processing ones (the wheel's ``average_fraction``) are left out: they may
+    change on resume."""
+    return {
+        **named,
+        "body": body,
+        "model": c.model,
+        "cell_size": c.cell_size,
+        "cfl": c.cfl,
+        "gravity": c.gravity,
+        "packing": c.packing,
+        "bed_density": c.bed_density,
+        "particles_per_cell": c.particles_per_cell,
+        "walls": c.walls,
+    }
 
 
-def _settle_phases(c: _Common, depth: float, settle_time: float | None, dt: float) -> list[Phase]:
-    """Damped settling of the bed under gravity (the body waits above the surface)."""
-    wave = c.model.wave_speed()
+def _derived_inputs(runner: Runner, eff: Body) -> dict[str, Any]:
+    """Quantities the run computes from its inputs; a checkpoint must match them too."""
+    return {
+        "mpm_body": eff,
+        "grid": runner.grid,
+        "dt": runner.dt,
+        "record_every": runner.record_every,
+        "frame_every": runner.frame_every,
+        "phases": [[p.name, p.n_steps, p.damping, p.twist, p.free] for p in runner.phases],
+        "particles": len(runner.particles),
+        "pose": runner.body.pose,
+        "load": runner.body.load,
+        "mass": runner.body.mass,
+        "inertia": runner.body.inertia,
+    }
+
+
+def _settle_time(c: _Common, depth: float, settle_time: float | None) -> float:
     if settle_time is None:
         settle_time = default_settle_time(c.model, depth, c.packing, c.gravity)
-    check_positive("settle_time", settle_time, allow_zero=True)
+    return check_positive("settle_time", settle_time, allow_zero=True)
+
+
+def _settle_phases(c: _Common, depth: float, settle_time: float, dt: float) -> list[Phase]:
+    """Damped settling of the bed under gravity (the body waits above the surface)."""
+    wave = c.model.wave_speed()
     n = max(1, round(settle_time / dt))
     return [Phase("settle", n, damping=wave / depth, twist=(0.0, 0.0, 0.0), free=(False, False))]
 
@@ -145,12 +180,27 @@ def _frame_every(frame_count: int, motion_steps: int, record_every: int) -> int:
     return max(1, round(motion_steps / record_every / frame_count))
 
 
-def _execute(runner: Runner, resume: bool) -> float:
+def _execute(runner: Runner, resume: bool, eff: Body) -> float:
+    """Run (or resume) ``runner``; returns the wall time [s]. A checkpoint is never removed here: one
+    left by an earlier run is continued with ``resume`` or refused."""
     t0 = time.perf_counter()
+    path = runner.checkpoint_path
+    if isinstance(runner.fingerprint, dict):
+        runner.fingerprint = plain({**runner.fingerprint, "derived": _derived_inputs(runner, eff)})
+    if path is not None and path.is_dir():
+        raise InputError("checkpoint_path", str(path), "a file path, not a directory")
     if resume:
+        if path is None:
+            raise InputError("resume", True, "resume together with checkpoint_path", "give the file")
         runner.resume()
-    elif runner.checkpoint_path is not None and runner.checkpoint_path.exists():
-        runner.checkpoint_path.unlink()
+    elif path is not None and path.exists():
+        raise InputError(
+            "checkpoint_path",
+            str(path),
+            "a path with no checkpoint when resume is off",
+            "a checkpoint of an earlier run is there; pass resume=True (CLI flag --resume) to "
+            "continue it, or remove the file to start afresh",
+        )
     runner.run()
     return time.perf_counter() - t0
 
@@ -216,7 +266,7 @@ def _intrusion_bed(seg, c: _Common, depth, window, direction, angle, bed_depth, 
 
 def _runner(c: _Common, grid, state, dt, phases, record_every, reference_speed, io, key) -> Runner:
     """A :class:`Runner` with the bed made from ``c``; ``io`` = (snapshot_dir, snapshot_every,
-    checkpoint_path, checkpoint_interval, progress); ``key`` = inputs that fingerprint the run."""
+    checkpoint_path, checkpoint_interval, progress); ``key`` = inputs that identify the run."""
     snap, snap_every, ckpt, interval, progress = io
     particles = make_bed(
         c.model,
@@ -236,7 +286,7 @@ def _runner(c: _Common, grid, state, dt, phases, record_every, reference_speed, 
         gravity=c.gravity,
         record_every=record_every,
         reference_speed=reference_speed,
-        fingerprint=_fingerprint(*key, grid, c, record_every),
+        fingerprint=key,
         checkpoint_path=None if ckpt is None else Path(ckpt),
         checkpoint_interval=check_positive("checkpoint_interval", interval),
         snapshot_dir=None if snap is None else Path(snap),
@@ -274,7 +324,7 @@ def run_intrusion(
     snapshot_dir: str | Path | None = None,
     snapshot_spacing: float | None = None,
     checkpoint_path: str | Path | None = None,
-    checkpoint_interval: float = 600.0,
+    checkpoint_interval: float = 60.0,
     resume: bool = False,
     progress: ProgressCallback | None = None,
     frame_count: int = 0,
@@ -303,7 +353,14 @@ def run_intrusion(
         checkpoints, and whether to continue from an existing checkpoint.
     progress : callable ``(simulated_time_s, fraction_done)``.
     frame_count : keep about this many light copies of the state during the motion (``result.frames``,
-        for :func:`terradyn.plotting.mpm.animate_frames`); 0 keeps none. Frames are not checkpointed.
+        for :func:`terradyn.plotting.mpm.animate_frames`); 0 keeps none. Frames are checkpointed.
+
+    Checkpoints: an existing ``checkpoint_path`` is never overwritten or removed by a fresh run
+    (:class:`~terradyn.errors.InputError` unless ``resume``); a finished run keeps its final
+    checkpoint, and resuming it returns the result without stepping. A checkpoint only resumes a run
+    with the same inputs (output settings such as ``checkpoint_interval``, ``snapshot_dir`` and
+    ``progress`` may change). On KeyboardInterrupt the state at the end of the last completed chunk
+    is checkpointed and :class:`~terradyn.mpm.solver.RunInterrupted` is raised.
     """
     overrides = dict(
         youngs_modulus=youngs_modulus,
@@ -333,10 +390,11 @@ def run_intrusion(
     sin_d, cos_d = math.sin(direction), math.cos(direction)
     model = c.model
     dt = stable_time_step(model, h, cfl=c.cfl, speed=speed)
+    settle = _settle_time(c, grid.depth, settle_time)
     vel = (speed * cos_d, -speed * sin_d, 0.0)
     n_move = max(1, math.ceil(travel / speed / dt))
     phases = [
-        *_settle_phases(c, grid.depth, settle_time, dt),
+        *_settle_phases(c, grid.depth, settle, dt),
         Phase("intrude", n_move, twist=vel, free=(False, False)),
     ]
     spacing = 0.25 * h if record_spacing is None else check_positive("record_spacing", record_spacing)
@@ -356,10 +414,22 @@ def run_intrusion(
         s_sp = 4 * h if snapshot_spacing is None else check_positive("snapshot_spacing", snapshot_spacing)
         snap_every = max(1, round(s_sp / (record_every * dt * speed)))
     io = (snapshot_dir, snap_every, checkpoint_path, checkpoint_interval, progress)
-    key = ("intrusion", repr(eff), body.width, model, depth, direction, angle, speed, settle_time)
+    named = dict(
+        run="intrusion",
+        depth=depth,
+        direction=direction,
+        angle=angle,
+        speed=speed,
+        averaging_window=window,
+        settle_time=settle,
+        bed_width=grid.width,
+        bed_depth=grid.depth,
+        frame_count=frame_count,
+    )
+    key = _run_inputs(c, body, named)
     runner = _runner(c, grid, state, dt, phases, record_every, speed, io, key)
     runner.frame_every = _frame_every(frame_count, phases[-1].n_steps, record_every)
-    wall = _execute(runner, resume)
+    wall = _execute(runner, resume, eff)
     series = _series(runner, body.width, skip_phases=1)
     series = {"depth_m": -series["z_m"], **series}
     sel = np.abs(series["depth_m"] - depth) <= 0.5 * window
@@ -487,7 +557,7 @@ def run_wheel(
     snapshot_dir: str | Path | None = None,
     snapshot_interval: float | None = None,
     checkpoint_path: str | Path | None = None,
-    checkpoint_interval: float = 600.0,
+    checkpoint_interval: float = 60.0,
     resume: bool = False,
     progress: ProgressCallback | None = None,
     frame_count: int = 0,
@@ -583,8 +653,9 @@ def run_wheel(
     )
     wave = model.wave_speed()
     drive_twist = (v_forward if slip is not None else 0.0, 0.0, omega_cmd)
+    settle = _settle_time(c, grid.depth, settle_time)
     phases = [
-        *_settle_phases(c, grid.depth, settle_time, dt),
+        *_settle_phases(c, grid.depth, settle, dt),
         Phase("sink", max(1, round(sink_time / dt)), damping=wave / grid.depth, free=(False, True, False)),
         Phase(
             "drive",
@@ -602,25 +673,26 @@ def run_wheel(
         s_int = duration / 20.0 if snapshot_interval is None else snapshot_interval
         snap_every = max(1, round(check_positive("snapshot_interval", s_int) / (record_every * dt)))
     io = (snapshot_dir, snap_every, checkpoint_path, checkpoint_interval, progress)
-    key = (
-        "wheel",
-        repr(eff),
-        wheel.width,
-        model,
-        load,
-        omega,
-        slip,
-        drive_torque,
-        drawbar_load,
-        max_omega if torque_mode else None,
-        inertia_w,
-        duration,
-        sink_time,
-        settle_time,
+    named = dict(
+        run="wheel",
+        load=load,
+        omega=omega,
+        slip=slip,
+        drive_torque=drive_torque,
+        drawbar_load=drawbar_load,
+        max_omega=max_omega if torque_mode else None,
+        inertia=inertia_w * wheel.width,
+        duration=duration,
+        sink_time=sink_time,
+        settle_time=settle,
+        bed_length=grid.width,
+        bed_depth=grid.depth,
+        frame_count=frame_count,
     )
+    key = _run_inputs(c, wheel, named)
     runner = _runner(c, grid, state, dt, phases, record_every, v_max, io, key)
     runner.frame_every = _frame_every(frame_count, phases[-1].n_steps, record_every)
-    wall = _execute(runner, resume)
+    wall = _execute(runner, resume, eff)
     series, summary = _wheel_summary(runner, wheel.width, seg, average_fraction, radius, load)
     summary["drawbar_load_N"] = float(drawbar_load)
     if torque_mode:

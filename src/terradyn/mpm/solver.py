@@ -8,10 +8,14 @@ the force on the body, and writes snapshots and checkpoints.
 from __future__ import annotations
 
 import math
+import signal
+import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import FrameType, TracebackType
+from typing import Any
 
 import numba
 import numpy as np
@@ -28,6 +32,7 @@ __all__ = [
     "MPMInstabilityError",
     "ParticleState",
     "Phase",
+    "RunInterrupted",
     "Runner",
     "make_bed",
     "stable_time_step",
@@ -46,6 +51,99 @@ ProgressCallback = Callable[[float, float], None]
 
 class MPMInstabilityError(SolverError):
     """The MPM run became unstable (NaN, CFL violation or runaway kinetic energy)."""
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """A run stopped by an interrupt (SIGINT, or SIGTERM if the caller maps it to KeyboardInterrupt).
+
+    Attributes
+    ----------
+    time_s : simulated time [s] of the last consistent state (the end of the last completed chunk)
+    step, total_steps : its step and the steps of the whole run
+    checkpoint_path : the checkpoint now holding that state, or None (no ``checkpoint_path`` was set,
+        or writing it failed)
+    failure : why the checkpoint could not be written ("" if it was, or none was asked for); an
+        earlier checkpoint of the run, if any, is then still in place
+    """
+
+    def __init__(
+        self,
+        time_s: float,
+        step: int,
+        total_steps: int,
+        checkpoint_path: Path | None,
+        failure: str = "",
+    ) -> None:
+        self.time_s = float(time_s)
+        self.step = int(step)
+        self.total_steps = int(total_steps)
+        self.checkpoint_path = checkpoint_path
+        self.failure = failure
+        where = f"interrupted at t = {self.time_s:.6g} s (step {self.step} of {self.total_steps})"
+        if failure:
+            tail = f"{failure}; an earlier checkpoint, if any, is kept"
+        elif checkpoint_path is None:
+            tail = "no checkpoint written (set checkpoint_path to keep the work of an interrupted run)"
+        else:
+            tail = f"checkpoint written to {checkpoint_path}; rerun with resume to continue"
+        super().__init__(f"{where}; {tail}")
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (type(self), (self.time_s, self.step, self.total_steps, self.checkpoint_path, self.failure))
+
+
+#: Signals whose Python handlers :class:`_HeldInterrupts` holds back.
+_HELD_SIGNALS = tuple(
+    s for s in (getattr(signal, "SIGINT", None), getattr(signal, "SIGTERM", None)) if s is not None
+)
+
+
+class _HeldInterrupts:
+    """Hold back SIGINT/SIGTERM handlers during a block that must not stop half-way.
+
+    A KeyboardInterrupt raised between two Python statements of a chunk (say after the compiled
+    steps updated the particles in place but before the step counter moved) would leave a state that
+    cannot be saved. Inside the block the Python-level handlers only note the signal; on a normal exit
+    the first noted signal is handed to its original handler (which raises KeyboardInterrupt, or
+    whatever the caller installed), now at a consistent point. With ``deliver=False`` noted signals
+    are dropped (used while writing the checkpoint of an interrupted run). Only the main thread
+    receives signals; elsewhere this does nothing.
+    """
+
+    def __init__(self, *, deliver: bool = True) -> None:
+        self.deliver = deliver
+        self._old: dict[int, Callable[[int, FrameType | None], Any]] = {}
+        self._noted: list[tuple[int, FrameType | None]] = []
+        self._active = False
+
+    def _note(self, signum: int, frame: FrameType | None) -> None:
+        if self._active:
+            self._noted.append((signum, frame))
+        else:  # a signal after the block ended but before the handler was put back
+            self._old[signum](signum, frame)
+
+    def __enter__(self) -> _HeldInterrupts:
+        if threading.current_thread() is threading.main_thread():
+            for sig in _HELD_SIGNALS:
+                old = signal.getsignal(sig)
+                if callable(old):
+                    self._old[sig] = old
+                    signal.signal(sig, self._note)
+            self._active = True
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self._active = False
+        for sig, old in self._old.items():
+            signal.signal(sig, old)
+        if self._noted and exc_type is None and self.deliver:
+            signum, frame = self._noted[0]
+            self._old[signum](signum, frame)
 
 
 @dataclass(frozen=True, slots=True)
@@ -246,7 +344,16 @@ class Runner:
     """Advances particles and one body through a list of phases; records, checks, saves.
 
     ``record_every`` steps form one recorded row (forces averaged over those steps). Output paths are
-    optional; ``checkpoint_interval`` is wall-clock seconds between checkpoints.
+    optional; ``checkpoint_interval`` is wall-clock seconds between checkpoints. ``fingerprint`` holds
+    the inputs that identify the run (a JSON-able mapping, see
+    :func:`~terradyn.mpm.checkpoint.plain`; a string is an opaque key): a checkpoint is only resumed
+    by a runner with the same fingerprint.
+
+    State is consistent (and checkpointed) at the end of a chunk of ``record_every`` steps: the
+    particles, the body, the step counter, the rows and the animation frames. Interrupts that arrive
+    inside a chunk are held until it ends (:class:`_HeldInterrupts`); :meth:`run` then writes a
+    checkpoint of that state and raises :class:`RunInterrupted`. Resuming it is bit-identical to an
+    uninterrupted run.
     """
 
     model: GranularModel
@@ -259,9 +366,9 @@ class Runner:
     record_every: int = 50
     has_body: bool = True
     reference_speed: float = 0.0
-    fingerprint: str = ""
+    fingerprint: Mapping[str, Any] | str = ""
     checkpoint_path: Path | None = None
-    checkpoint_interval: float = 600.0
+    checkpoint_interval: float = 60.0
     snapshot_dir: Path | None = None
     snapshot_every: int = 0
     progress: ProgressCallback | None = None
@@ -270,6 +377,7 @@ class Runner:
     rows: list[list[float]] = field(default_factory=list)
     frames: list[dict[str, np.ndarray]] = field(default_factory=list)
     _last_checkpoint: float = field(default=0.0, repr=False)
+    _saved_step: int = field(default=-1, repr=False)  # step of the checkpoint on disk (-1: none)
 
     ROW = (
         "phase",
@@ -290,20 +398,46 @@ class Runner:
     def total_steps(self) -> int:
         return sum(p.n_steps for p in self.phases)
 
-    def resume(self) -> bool:
-        """Load the checkpoint if it exists; returns True if the run continues from it."""
-        if self.checkpoint_path is None or not self.checkpoint_path.exists():
-            return False
-        data = load_checkpoint(self.checkpoint_path, self.fingerprint)
-        self.particles = ParticleState.from_arrays(data)
-        self.body.pose[:] = data["b_pose"]
-        self.body.twist[:] = data["b_twist"]
-        self.body.free[: len(data["b_free"])] = data["b_free"]
-        self.step = int(data["step"])
-        self.rows = [list(r) for r in data["rows"]]
-        return True
+    #: Arrays every run checkpoint holds (besides the particles ``p_*``).
+    CHECKPOINT_KEYS = ("b_pose", "b_twist", "b_free", "step", "rows", "frame_count")
+
+    def resume(self) -> None:
+        """Load the state of ``checkpoint_path``.
+
+        Raises :class:`~terradyn.errors.InputError` (field ``checkpoint_path``) if there is none, if it
+        is unreadable, or if it was written by a run with other inputs (the message names them).
+        """
+        path = self.checkpoint_path
+        if path is None:
+            raise InputError("resume", True, "resume together with checkpoint_path", "give the file")
+        names = [f"p_{k}" for k in ParticleState.NAMES]
+        data = load_checkpoint(path, self.fingerprint, required=(*names, *self.CHECKPOINT_KEYS))
+        try:
+            particles = ParticleState.from_arrays(data)
+            rows = np.asarray(data["rows"], dtype=float).reshape(-1, len(self.ROW))
+            frames = _unstack_frames(data)
+            step = int(data["step"])
+            if len(particles) != len(self.particles) or not 0 <= step <= self.total_steps:
+                raise ValueError("the particles or the step do not fit this run")
+            self.body.pose[:] = data["b_pose"]
+            self.body.twist[:] = data["b_twist"]
+            self.body.free[: len(data["b_free"])] = data["b_free"]
+        except (KeyError, ValueError, IndexError) as exc:
+            raise InputError(
+                "checkpoint_path",
+                str(path),
+                "a readable terradyn checkpoint (.npz)",
+                f"the file is not a readable terradyn checkpoint: its arrays do not fit this run "
+                f"({type(exc).__name__}); remove it or give another path",
+            ) from None
+        self.particles = particles
+        self.step = step
+        self.rows = [list(r) for r in rows]
+        self.frames = frames
+        self._saved_step = step
 
     def save_checkpoint(self) -> None:
+        """Write the current (consistent) state to ``checkpoint_path`` atomically, if one is set."""
         if self.checkpoint_path is None:
             return
         arrays = self.particles.arrays()
@@ -313,9 +447,11 @@ class Runner:
             b_free=self.body.free,
             step=np.array(self.step),
             rows=np.array(self.rows, dtype=float).reshape(-1, len(self.ROW)),
+            **_stack_frames(self.frames),
         )
         save_checkpoint(self.checkpoint_path, arrays, self.fingerprint)
         self._last_checkpoint = time.monotonic()
+        self._saved_step = self.step
 
     def prepare(self) -> None:
         """Allocate the grid and scratch buffers (idempotent)."""
@@ -341,9 +477,25 @@ class Runner:
         return forces
 
     def run(self) -> None:
-        """Run all phases from the current step to the end."""
+        """Run all phases from the current step to the end; the last state is checkpointed.
+
+        A run resumed at its end does no step and leaves its checkpoint as it is. On an interrupt
+        (KeyboardInterrupt) the state at the end of the last completed chunk is checkpointed (if
+        ``checkpoint_path`` is set; further interrupts wait until the file is written) and
+        :class:`RunInterrupted` is raised.
+        """
         self.prepare()
         self._last_checkpoint = time.monotonic()
+        try:
+            self._run_phases()
+        except RunInterrupted:
+            raise
+        except KeyboardInterrupt as exc:
+            raise self._interrupted() from exc
+        if self._saved_step != self.step:
+            self.save_checkpoint()
+
+    def _run_phases(self) -> None:
         start = 0
         for index, phase in enumerate(self.phases):
             stop = start + phase.n_steps
@@ -357,18 +509,34 @@ class Runner:
                 n = min(self.record_every, stop - self.step)
                 self._chunk(index, phase, n)
             start = stop
-        self.save_checkpoint()
+
+    def _interrupted(self) -> RunInterrupted:
+        """Checkpoint the consistent state after an interrupt; the exception to raise."""
+        written, failure = None, ""
+        if self.checkpoint_path is not None:
+            try:
+                with _HeldInterrupts(deliver=False):
+                    if self._saved_step != self.step:
+                        self.save_checkpoint()
+                written = self.checkpoint_path
+            except KeyboardInterrupt:
+                failure = "a second interrupt stopped the checkpoint write"
+            except OSError as exc:
+                failure = f"the checkpoint could not be written ({exc.strerror or type(exc).__name__})"
+        return RunInterrupted(self.step * self.dt, self.step, self.total_steps, written, failure)
 
     def _chunk(self, index: int, phase: Phase, n: int) -> None:
+        """Advance ``n`` steps and record them; the state is consistent again when this returns."""
         b = self.body
-        f = self.advance_steps(n, phase.damping).mean(axis=0)
-        t = self.step * self.dt
-        self.rows.append([index, self.step, t, *b.pose, *b.twist, *f])
+        with _HeldInterrupts():
+            f = self.advance_steps(n, phase.damping).mean(axis=0)
+            t = self.step * self.dt
+            self.rows.append([index, self.step, t, *b.pose, *b.twist, *f])
+            if self.frame_every > 0 and (self.step // self.record_every) % self.frame_every == 0:
+                self.frames.append(self.frame())
         if self.snapshot_dir is not None and self.snapshot_every > 0:
             if (self.step // self.record_every) % self.snapshot_every == 0:
                 self.write_snapshot()
-        if self.frame_every > 0 and (self.step // self.record_every) % self.frame_every == 0:
-            self.frames.append(self.frame())
         if self.checkpoint_path is not None:
             if time.monotonic() - self._last_checkpoint >= self.checkpoint_interval:
                 self.save_checkpoint()
@@ -490,3 +658,24 @@ class Runner:
         """Recorded rows as columns (forces still per unit width)."""
         arr = np.array(self.rows, dtype=float).reshape(-1, len(self.ROW))
         return {name: arr[:, k] for k, name in enumerate(self.ROW)}
+
+
+def _stack_frames(frames: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
+    """Animation frames as checkpoint arrays: ``frame_count`` and one stacked ``f_<key>`` per key."""
+    out = {"frame_count": np.array(len(frames))}
+    if frames:
+        for key in frames[0]:
+            out[f"f_{key}"] = np.stack([np.asarray(fr[key]) for fr in frames])
+    return out
+
+
+def _unstack_frames(data: Mapping[str, np.ndarray]) -> list[dict[str, np.ndarray]]:
+    """Inverse of :func:`_stack_frames`."""
+    count = int(data["frame_count"])
+    keys = [k for k in data if k.startswith("f_")]
+    if count and not keys:
+        raise KeyError("f_time_s")
+    for k in keys:
+        if data[k].shape[0] != count:
+            raise ValueError(f"{k} holds {data[k].shape[0]} frames, not {count}")
+    return [{k[2:]: data[k][i, ...].copy() for k in keys} for i in range(count)]

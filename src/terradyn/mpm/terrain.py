@@ -30,7 +30,15 @@ from ..materials import Material
 from .bodies import BodyState, body_segments, effective_body
 from .checkpoint import load_checkpoint, save_checkpoint
 from .model import BedPacking, GranularModel, Walls, default_settle_time, resolve_model
-from .solver import BedGrid, ParticleState, Phase, Runner, make_bed, stable_time_step
+from .solver import (
+    BedGrid,
+    ParticleState,
+    Phase,
+    Runner,
+    _HeldInterrupts,
+    make_bed,
+    stable_time_step,
+)
 
 __all__ = ["MPMTerrain"]
 
@@ -257,15 +265,16 @@ class MPMTerrain:
         self._check_inside(b, pose, "pose")
         n = max(1, math.ceil(dt / self.dt - 1e-9))
         sub = dt / n
-        runner.dt = sub
-        b.pose[:] = pose.as_array()
-        b.twist[:] = twist.as_array()
-        b.free[:] = False
-        try:
-            forces = runner.advance_steps(n)
-        finally:
-            runner.dt = self.dt
-        self._time += dt
+        with _HeldInterrupts():  # an interrupt waits until particles, step and time agree again
+            runner.dt = sub
+            b.pose[:] = pose.as_array()
+            b.twist[:] = twist.as_array()
+            b.free[:] = False
+            try:
+                forces = runner.advance_steps(n)
+            finally:
+                runner.dt = self.dt
+            self._time += dt
         # Per-step torques are about the body origin of that step; move each to ``about``.
         k = np.arange(n) + 0.5
         ox = pose.x + k * sub * twist.vx
@@ -291,42 +300,60 @@ class MPMTerrain:
         runner = self._require()
         arrays = runner.particles.arrays()
         arrays.update(b_pose=runner.body.pose, time=np.array(self._time), step=np.array(runner.step))
-        return save_checkpoint(path, arrays, self._fingerprint())
+        return save_checkpoint(path, arrays, self._inputs(self._body, self._eff))
 
     def restore(self, body: Body, path: str | Path) -> None:
         """Continue from a state written by :meth:`save` with the same terrain settings and ``body``.
 
-        Raises :class:`~terradyn.errors.InputError` if the file is missing or was written for other
-        settings or another body.
+        Raises :class:`~terradyn.errors.InputError` (field ``path``) if the file is missing, is not a
+        readable terradyn checkpoint, or was written for other settings or another body (the message
+        names the settings that differ).
         """
-        if not Path(path).exists():
-            raise InputError("path", str(path), "an existing MPM terrain state file")
         runner, eff, _ = self._setup(body)
-        self._eff, self._body = eff, body
-        data = load_checkpoint(path, self._fingerprint())
-        runner.particles = ParticleState.from_arrays(data)
-        runner.body.pose[:] = data["b_pose"]
-        runner.step = int(data["step"])
-        runner.has_body = True
-        self._runner, self._time = runner, float(data["time"])
-
-    def _fingerprint(self) -> str:
-        import hashlib
-
-        key = (
-            "terrain",
-            self.model,
-            self.grid,
-            self.packing,
-            self.bed_density,
-            self.particles_per_cell,
-            self.gravity,
-            self.cfl,
-            self.max_speed,
-            repr(self._eff),
-            self._body.width if self._body is not None else None,
+        names = [f"p_{k}" for k in ParticleState.NAMES]
+        data = load_checkpoint(
+            path, self._inputs(body, eff), required=(*names, "b_pose", "time", "step"), field="path"
         )
-        return hashlib.sha256(repr(key).encode()).hexdigest()
+        try:
+            particles = ParticleState.from_arrays(data)
+            if len(particles) != len(runner.particles):
+                raise ValueError("particle count")
+            pose = np.asarray(data["b_pose"], dtype=float).reshape(3)
+            step, t = int(data["step"]), float(data["time"])
+        except (ValueError, TypeError) as exc:
+            raise InputError(
+                "path",
+                str(path),
+                "a readable terradyn checkpoint (.npz)",
+                f"the file is not a readable terradyn checkpoint: its arrays do not fit this terrain "
+                f"({type(exc).__name__}); remove it or give another path",
+            ) from None
+        runner.particles = particles
+        runner.body.pose[:] = pose
+        runner.step = step
+        runner.has_body = True
+        self._runner, self._body, self._eff, self._time = runner, body, eff, t
+
+    def _inputs(self, body: Body | None, eff: Body | None) -> dict[str, object]:
+        """The settings a saved state belongs to (see :func:`~terradyn.mpm.checkpoint.load_checkpoint`)."""
+        return {
+            "run": "terrain",
+            "body": body,
+            "model": self.model,
+            "cell_size": self.grid.cell_size,
+            "bed_width": self.grid.width,
+            "bed_depth": self.grid.depth,
+            "air": self.grid.air,
+            "x_left": self.grid.x_left,
+            "walls": self.grid.walls,
+            "packing": self.packing,
+            "bed_density": self.bed_density,
+            "particles_per_cell": self.particles_per_cell,
+            "gravity": self.gravity,
+            "cfl": self.cfl,
+            "max_speed": self.max_speed,
+            "derived": {"mpm_body": eff, "dt": self.dt},
+        }
 
     def __repr__(self) -> str:
         g = self.grid
