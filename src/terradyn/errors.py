@@ -7,9 +7,13 @@ allowed and, where useful, a hint. The CLI prints its message as one line and ex
 from __future__ import annotations
 
 import math
+import os
+from enum import IntEnum
 from typing import Any
 
 __all__ = [
+    "ChecksFailed",
+    "ExitCode",
     "InputError",
     "SolverError",
     "TerradynError",
@@ -19,32 +23,78 @@ __all__ = [
 ]
 
 
+class ExitCode(IntEnum):
+    """Exit status of the ``terradyn`` command (documented in the README)."""
+
+    OK = 0
+    INPUT = 1  #: bad input: a flag, field or file the user gave
+    USAGE = 2  #: the command line itself: unknown command or flag, missing argument
+    SOLVER = 3  #: valid input without an answer (load the medium cannot carry, unstable run)
+    CHECKS_FAILED = 4  #: ``terradyn validate`` ran and a check failed
+    INTERNAL = 70  #: a bug in terradyn (EX_SOFTWARE)
+    INTERRUPTED = 130  #: stopped by Ctrl-C (SIGINT)
+    TERMINATED = 143  #: stopped by SIGTERM
+
+
 class TerradynError(Exception):
     """Base class of every error terradyn raises on purpose."""
 
-    exit_code = 1
+    exit_code: int = ExitCode.INPUT
+
+
+def show_value(value: Any) -> str:
+    """A value as a user would have typed it: no Python reprs (paths, NumPy scalars, tuples)."""
+    if isinstance(value, os.PathLike):
+        return repr(os.fspath(value))
+    if hasattr(value, "item") and not isinstance(value, str | bytes):
+        try:
+            value = value.item()
+        except (TypeError, ValueError):
+            return str(value)
+    if isinstance(value, bool) or value is None:
+        return str(value).lower() if value is not None else "none"
+    if isinstance(value, float):
+        return f"{value:g}" if math.isfinite(value) else str(value)
+    if isinstance(value, tuple | list):
+        return ", ".join(show_value(v) for v in value)
+    if hasattr(value, "value") and isinstance(getattr(value, "value", None), str):  # an Enum member
+        return repr(value.value)
+    if isinstance(value, str):
+        return repr(value)
+    return str(value)
 
 
 class InputError(TerradynError, ValueError):
     """A bad input: names the field, the value, what is allowed and a hint."""
 
-    exit_code = 2
+    exit_code = ExitCode.INPUT
 
     def __init__(self, field: str, value: Any, allowed: str, hint: str = "") -> None:
         self.field = field
         self.value = value
         self.allowed = allowed
         self.hint = hint
-        msg = f"{field} = {value!r} is not allowed; expected {allowed}"
-        if hint:
-            msg += f" ({hint})"
-        super().__init__(msg)
+        super().__init__(self.render())
+
+    def render(self, field: str | None = None, value: Any = None) -> str:
+        """The one-line message, optionally naming the field as ``field`` (e.g. a CLI flag)."""
+        shown = show_value(self.value if value is None else value)
+        msg = f"{field or self.field} = {shown} is not allowed; expected {self.allowed}"
+        if self.hint:
+            msg += f" ({self.hint})"
+        return " ".join(msg.split())
 
 
 class SolverError(TerradynError, RuntimeError):
     """A solve that has no answer for valid inputs (e.g. a load the medium cannot carry)."""
 
-    exit_code = 3
+    exit_code = ExitCode.SOLVER
+
+
+class ChecksFailed(TerradynError):
+    """Model checks ran and at least one failed (``terradyn validate``)."""
+
+    exit_code = ExitCode.CHECKS_FAILED
 
 
 def check_finite(field: str, value: float) -> float:

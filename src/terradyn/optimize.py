@@ -66,6 +66,7 @@ def optimize(
     population: int = 12,
     tolerance: float = 1e-6,
     polish: bool = False,
+    progress: Callable[[int, int], None] | None = None,
 ) -> OptimizationResult:
     """Global optimum of ``objective(params)`` over the box ``bounds`` by differential evolution.
 
@@ -105,6 +106,8 @@ def optimize(
 
     def callback(intermediate_result: Any) -> None:
         trace.append(sign * float(intermediate_result.fun))
+        if progress is not None:
+            progress(len(trace), max_iterations)
 
     res = differential_evolution(
         f,
@@ -225,6 +228,7 @@ def optimize_flapped_wheel(
     phase_count: int = 16,
     element_size: float | None = None,
     method: str = "steady",
+    progress: Callable[[int, int], None] | None = None,
 ) -> OptimizationResult:
     """Best flap count, flap length / hub radius and flap angle [rad] of a flapped wheel.
 
@@ -261,4 +265,5 @@ def optimize_flapped_wheel(
         seed=seed,
         max_iterations=max_iterations,
         population=population,
+        progress=progress,
     )

@@ -52,7 +52,7 @@ class TableResult:
 
     def save(self, path: str | Path) -> Path:
         """Write CSV (``.csv``), JSON (``.json``) or Parquet (``.parquet``) atomically."""
-        from .cli._common import atomic_write_text
+        from .io import atomic_write_text
 
         p = Path(path)
         if p.suffix == ".csv":

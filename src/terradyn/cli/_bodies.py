@@ -64,7 +64,7 @@ class BodyOptions:
     """Typer options of every size flag (all optional; the shape decides which apply)."""
 
     length = typer.Option(None, "--length", help="Plate length [m].")
-    width = typer.Option(0.01, "--width", help="Out-of-plane width [m].")
+    width = typer.Option(0.01, "--width", help="Out-of-plane width of the body [m].")
     thickness = typer.Option(None, "--thickness", help="Plate/flap/C-leg thickness [m].")
     radius = typer.Option(None, "--radius", help="Radius [m] (cylinder, wheel rim, C-leg).")
     side = typer.Option(None, "--side", help="Square side [m].")
@@ -100,5 +100,7 @@ def build_body(kind: BodyKind, width: float, **flags: Any) -> geometry.Body:
     if ctor is None:
         raise InputError("BODY", kind.value, "a shape this build of terradyn provides")
     if kind is BodyKind.polygon:
-        return ctor.from_file(kwargs.pop("path"), width, center=False)
+        from .options import input_file
+
+        return ctor.from_file(input_file("--points-file", kwargs.pop("path")), width, center=False)
     return ctor(width=width, **kwargs)

@@ -1,118 +1,41 @@
-"""Shared CLI plumbing: output formats, atomic writes, progress bars."""
+"""Shared CLI plumbing: printing results, number lists, progress bars (files go through terradyn.io)."""
 
 from __future__ import annotations
 
-import io
-import json
 import math
 import os
 import sys
-import tempfile
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
-from enum import Enum
 from pathlib import Path
 from typing import Any, TypeVar
 
 from ..errors import InputError
+from ..io import (
+    OutputFormat,
+    atomic_write,
+    atomic_write_text,
+    check_output_file,
+    current_output_set,
+    finalize_temp,
+    format_output,
+    save_figure,
+)
 
 __all__ = [
     "OutputFormat",
+    "atomic_write",
     "atomic_write_text",
+    "check_figure_path",
     "emit",
+    "finalize_temp",
+    "format_output",
     "parse_float_list",
     "progress",
     "save_figure",
 ]
 
 T = TypeVar("T")
-
-
-class OutputFormat(str, Enum):
-    table = "table"
-    json = "json"
-    csv = "csv"
-
-
-def _clean(value: Any) -> Any:
-    if isinstance(value, float) and not math.isfinite(value):
-        raise InputError("output", value, "finite numbers", "a computation produced a non-finite value")
-    if hasattr(value, "item") and not isinstance(value, str | bytes):
-        return _clean(value.item())
-    return value
-
-
-def _rows(data: dict[str, Any] | Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
-    rows = [data] if isinstance(data, dict) else list(data)
-    return [{k: _clean(v) for k, v in row.items()} for row in rows]
-
-
-def format_output(
-    data: dict[str, Any] | Sequence[dict[str, Any]], fmt: OutputFormat, *, title: str = ""
-) -> str:
-    """Render one record (dict) or a table (list of dicts) as text."""
-    rows = _rows(data)
-    if fmt is OutputFormat.json:
-        payload: Any = rows[0] if isinstance(data, dict) else rows
-        return json.dumps(payload, indent=2) + "\n"
-    if fmt is OutputFormat.csv:
-        import csv
-
-        buf = io.StringIO()
-        if rows:
-            writer = csv.DictWriter(buf, fieldnames=list(rows[0]))
-            writer.writeheader()
-            writer.writerows(rows)
-        return buf.getvalue()
-    from rich.console import Console
-    from rich.table import Table
-
-    table = Table(title=title or None)
-    keys = list(rows[0]) if rows else []
-    for key in keys:
-        table.add_column(key, justify="right")
-    for row in rows:
-        table.add_row(*(_fmt_cell(row[k]) for k in keys))
-    buf = io.StringIO()
-    Console(file=buf, width=max(100, 16 * len(keys)), force_terminal=False).print(table)
-    return buf.getvalue()
-
-
-def _fmt_cell(value: Any) -> str:
-    from rich.markup import escape
-
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    return escape(str(value))
-
-
-def _umask_mode() -> int:
-    """Permissions a plainly created file would get (0o666 minus the umask)."""
-    mask = os.umask(0)
-    os.umask(mask)
-    return 0o666 & ~mask
-
-
-def finalize_temp(tmp: str | Path, target: Path) -> None:
-    """Give a finished temporary file normal permissions and move it into place atomically."""
-    os.chmod(tmp, _umask_mode())
-    os.replace(tmp, target)
-
-
-def atomic_write_text(path: str | Path, text: str) -> Path:
-    """Write ``text`` to ``path`` through a temporary file in the same folder (no partial files)."""
-    p = Path(path)
-    if p.parent and not p.parent.exists():
-        raise InputError("--out", str(path), "a path in an existing folder")
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".tmp", dir=p.parent or Path("."))
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
-            fh.write(text)
-        finalize_temp(tmp, p)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return p
 
 
 def emit(
@@ -122,43 +45,28 @@ def emit(
     *,
     title: str = "",
 ) -> None:
-    """Print the result in ``fmt``; with ``out`` also write it there atomically."""
+    """Print the result in ``fmt``; with ``out`` also write it there (JSON for .json, else CSV).
+
+    Inside a command both go through the command's output set: printed and written only when the
+    whole command has succeeded."""
     text = format_output(data, fmt, title=title)
     if out is not None:
         file_fmt = fmt
         if fmt is OutputFormat.table:
             file_fmt = OutputFormat.json if str(out).endswith(".json") else OutputFormat.csv
-        atomic_write_text(out, format_output(data, file_fmt))
-    sys.stdout.write(text)
+        atomic_write_text(out, format_output(data, file_fmt), field_name="--out")
+    outs = current_output_set()
+    if outs is not None:
+        outs.print(text)
+    else:
+        sys.stdout.write(text)
 
 
-def check_figure_path(path: Path, field: str = "--plot") -> Path:
-    """``path`` if it names a figure file (.png/.pdf/.svg/.jpg) in an existing folder."""
-    p = Path(path)
-    if p.suffix.lower() not in {".png", ".pdf", ".svg", ".jpg", ".jpeg"}:
-        raise InputError(field, str(path), "a file ending in .png, .pdf, .svg or .jpg")
-    if p.parent and not p.parent.exists():
-        raise InputError(field, str(path), "a path in an existing folder")
-    return p
+def check_figure_path(path: Path | str, field: str = "--plot") -> Path:
+    """``path`` if a figure (.png/.pdf/.svg/.jpg) can be written there."""
+    from ..io import FIGURE_SUFFIXES
 
-
-def save_figure(fig: Any, path: Path, field: str = "--plot") -> Path:
-    """Save a matplotlib figure atomically (format from the file extension)."""
-    p = check_figure_path(path, field)
-    suffix = p.suffix.lower()
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.stem}.", suffix=suffix, dir=p.parent or Path("."))
-    os.close(fd)
-    try:
-        fig.savefig(tmp, dpi=130, bbox_inches="tight")
-        finalize_temp(tmp, p)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    finally:
-        import matplotlib.pyplot as plt
-
-        plt.close(fig)
-    return p
+    return check_output_file(field, path, suffixes=FIGURE_SUFFIXES, what="figure file")
 
 
 def parse_float_list(field: str, text: str) -> list[float]:
@@ -173,23 +81,28 @@ def parse_float_list(field: str, text: str) -> list[float]:
             if count < 1 or count > 100000:
                 raise ValueError
             if count == 1:
-                return [start]
-            return [start + (stop - start) * i / (count - 1) for i in range(count)]
-        values = [float(v) for v in text.split(",") if v.strip()]
+                values = [start]
+            else:
+                values = [start + (stop - start) * i / (count - 1) for i in range(count)]
+        else:
+            values = [float(v) for v in text.split(",") if v.strip()]
     except ValueError:
         raise InputError(
-            field, text, "a number, a comma list (0.01,0.02) or a range start:stop:count"
+            field, text, "a number, a comma list (0.01,0.02) or a range start:stop:count (count 1-100000)"
         ) from None
     if not values or not all(math.isfinite(v) for v in values):
         raise InputError(field, text, "finite numbers")
     return values
 
 
+def _quiet() -> bool:
+    return not sys.stderr.isatty() or bool(os.environ.get("CI"))
+
+
 @contextmanager
 def progress(total: int, description: str) -> Iterator[Callable[[int], None]]:
     """A progress bar with ETA on a terminal, silent in pipes and CI. Yields ``advance(n)``."""
-    quiet = not sys.stderr.isatty() or os.environ.get("CI")
-    if quiet:
+    if _quiet():
 
         def _silent(n: int = 1) -> None:
             return None
@@ -218,6 +131,43 @@ def progress(total: int, description: str) -> Iterator[Callable[[int], None]]:
             bar.advance(task, n)
 
         yield _advance
+
+
+@contextmanager
+def fraction_progress(label: str, unit: str = "") -> Iterator[Callable[[float, float], None]]:
+    """A progress bar driven by ``update(value, fraction_done)`` (e.g. simulated time), with ETA."""
+    if _quiet():
+        yield lambda value, fraction: None
+        return
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    with Progress(
+        TextColumn(label),
+        BarColumn(),
+        TextColumn("{task.fields[value]:.4g}" + (f" {unit}" if unit else "")),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        transient=True,
+    ) as bar:
+        task = bar.add_task(label, total=1.0, value=0.0)
+
+        def update(value: float, fraction: float) -> None:
+            bar.update(task, completed=min(1.0, max(0.0, fraction)), value=value)
+
+        yield update
+
+
+@contextmanager
+def spinner(label: str) -> Iterator[None]:
+    """An elapsed-time indicator for work without a known total (silent in pipes and CI)."""
+    if _quiet():
+        yield
+        return
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    with Progress(SpinnerColumn(), TextColumn(label), TimeElapsedColumn(), transient=True) as bar:
+        bar.add_task(label, total=None)
+        yield
 
 
 def iterate_with_progress(items: Iterable[T], total: int, description: str) -> Iterator[T]:

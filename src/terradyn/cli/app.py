@@ -1,88 +1,286 @@
-"""Entry point of the ``terradyn`` console script."""
+"""Entry point of the ``terradyn`` console script.
+
+Start-up is kept light: this module imports only the standard library at import time; the command
+modules (and NumPy, numba, typer behind them) load when a command runs, so ``terradyn --version`` and
+``terradyn --help`` answer at once. Every way a run can end maps to one exit code
+(:class:`terradyn.errors.ExitCode`, documented in the README), with one line on standard error.
+"""
 
 from __future__ import annotations
 
 import os
+import signal
 import sys
+from typing import Any
 
-import typer
+__all__ = ["COMMANDS", "main"]
 
-from .. import __version__
-from ..errors import TerradynError
+#: name -> (module under terradyn.cli, attribute, one-line help for ``terradyn --help``)
+COMMANDS: dict[str, tuple[str, str, str]] = {
+    "materials": ("materials_cmd", "app", "Shipped granular media and every parameter with its source."),
+    "rft": ("rft_cmd", "app", "The RFT stress law itself (alpha_x, alpha_z), one point or the map."),
+    "intrude": ("intrude_cmd", "intrude", "RFT force and torque on a body moving through the medium."),
+    "wheel": ("wheel_cmd", "app", "Wheel locomotion: steady solves, sweeps, free rolling (RFT, DRFT, ...)."),
+    "mpm": ("mpm_cmd", "app", "Plane-strain MPM continuum runs: intrusion and wheels."),
+    "calibrate": ("calibrate_cmd", "app", "Fit RFT or Bekker parameters to measurements."),
+    "study": ("study_cmd", "app", "Reproducible studies (thesis experiments)."),
+    "optimize": ("optimize_cmd", "app", "Design optimisation (flapped wheels)."),
+    "validate": ("validate_cmd", "validate", "Check the models against invariants and reference values."),
+    "demo": ("demo_cmd", "demo", "Run the headline study into a folder."),
+    "warmup": ("warmup_cmd", "warmup", "Compile and cache every numerical kernel (run once after install)."),
+}
 
-app = typer.Typer(
-    name="terradyn",
-    help="Locomotion and intrusion in dry granular media: RFT, terramechanics, MPM.",
-    no_args_is_help=True,
-    add_completion=False,
-    pretty_exceptions_enable=False,
-)
+_HELP = """Locomotion and intrusion in dry granular media: RFT, terramechanics, MPM.
 
-
-def _version(value: bool) -> None:
-    if value:
-        typer.echo(f"terradyn {__version__}")
-        raise typer.Exit()
-
-
-@app.callback()
-def _root(
-    version: bool = typer.Option(
-        False, "--version", callback=_version, is_eager=True, help="Print the version and exit."
-    ),
-) -> None:
-    """terradyn command line."""
+SI units everywhere (angles in degrees on the command line). Exit codes: 0 success, 1 bad input,
+2 usage, 3 solver failure, 4 failed checks, 70 internal error, 130 interrupted (Ctrl-C), 143 terminated.
+Run 'terradyn COMMAND --help' for a command's options."""
 
 
-def _register() -> None:
-    from . import demo_cmd, intrude_cmd, materials_cmd, rft_cmd
-
-    app.add_typer(materials_cmd.app, name="materials")
-    app.add_typer(rft_cmd.app, name="rft")
-    intrude_cmd.register(app)
-    demo_cmd.register(app)
-    for module_name in ("wheel_cmd", "calibrate_cmd", "study_cmd", "mpm_cmd", "validate_cmd", "optimize_cmd"):
-        try:
-            module = __import__(f"terradyn.cli.{module_name}", fromlist=["register"])
-        except ModuleNotFoundError as exc:
-            if exc.name != f"terradyn.cli.{module_name}":
-                raise
-            continue
-        module.register(app)
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, delivered as an interrupt so that the same clean-up runs."""
 
 
-_register()
+_terminated = False
+
+
+def _on_sigterm(signum: int, frame: Any) -> None:
+    global _terminated
+    _terminated = True
+    raise _Terminated()
+
+
+def _root() -> Any:
+    """The root command: a group whose subcommands are imported on first use."""
+    os.environ.setdefault("TYPER_USE_RICH", "0")
+    import typer
+    import typer.main
+    from typer.core import TyperGroup
+
+    from .. import __version__
+
+    class LazyGroup(TyperGroup):
+        def list_commands(self, ctx: Any) -> list[str]:
+            return list(COMMANDS)
+
+        def get_command(self, ctx: Any, cmd_name: str) -> Any:
+            return load_command(cmd_name) if cmd_name in COMMANDS else None
+
+        def format_commands(self, ctx: Any, formatter: Any) -> None:
+            with formatter.section("Commands"):
+                formatter.write_dl([(name, about) for name, (_, _, about) in COMMANDS.items()])
+
+    root = typer.Typer(
+        cls=LazyGroup,
+        name="terradyn",
+        help=_HELP,
+        no_args_is_help=True,
+        add_completion=False,
+        rich_markup_mode=None,
+        context_settings={"help_option_names": ["--help", "-h"], "max_content_width": 100},
+    )
+
+    def _version(value: bool) -> None:
+        if value:
+            sys.stdout.write(f"terradyn {__version__}\n")
+            raise typer.Exit(0)
+
+    @root.callback()
+    def _options(
+        version: bool = typer.Option(
+            False, "--version", is_eager=True, callback=_version, help="Print the version and exit."
+        ),
+        threads: int | None = typer.Option(
+            None,
+            "--threads",
+            help="Worker threads for compiled kernels (default: the TERRADYN_THREADS variable, else all cores).",
+        ),
+    ) -> None:
+        if threads is not None:
+            from ..errors import InputError
+
+            if threads < 1:
+                raise InputError("--threads", threads, "an integer >= 1")
+            os.environ["TERRADYN_THREADS"] = str(threads)
+
+    return typer.main.get_command(root)
+
+
+def load_command(name: str) -> Any:
+    """The click command of the top-level command ``name`` (imports its module)."""
+    import importlib
+
+    os.environ.setdefault("TYPER_USE_RICH", "0")
+    import typer
+    import typer.main
+
+    module_name, attr, about = COMMANDS[name]
+    module = importlib.import_module(f"terradyn.cli.{module_name}")
+    obj = getattr(module, attr)
+    if isinstance(obj, typer.Typer):
+        obj._add_completion = False
+        if obj.registered_callback is None:
+            obj.callback()(_group_callback)  # a group even when it has one subcommand
+    if not isinstance(obj, typer.Typer):
+        single = typer.Typer(add_completion=False, rich_markup_mode=None)
+        single.command(name, help=obj.__doc__)(obj)
+        obj = single
+    command = typer.main.get_command(obj)
+    _record_flags(command)
+    command.name = name
+    if not command.help:
+        command.help = about
+    return command
+
+
+def _group_callback() -> None:
+    """A command group."""
+
+
+def _record_flags(command: Any) -> None:
+    """Make every leaf command record its flags when it runs (for messages that name them)."""
+    import functools
+
+    from .options import set_active_flags
+
+    subcommands = getattr(command, "commands", None)
+    if subcommands:
+        for sub in subcommands.values():
+            _record_flags(sub)
+        return
+    callback = command.callback
+    if callback is None:
+        return
+
+    @functools.wraps(callback)
+    def recorded(*args: Any, **kwargs: Any) -> Any:
+        set_active_flags(command.params)
+        return callback(*args, **kwargs)
+
+    command.callback = recorded
+
+
+def _usage_message(exc: Any) -> str:
+    """One line for a click usage error, naming the command it belongs to."""
+    message = " ".join(str(exc.format_message()).split())
+    ctx = getattr(exc, "ctx", None)
+    where = f" (see '{ctx.command_path} --help')" if ctx is not None else ""
+    return f"{message}{where}"
+
+
+def _run(args: list[str]) -> int:
+    from typer import _click as click  # type: ignore[attr-defined]
+    from typer.exceptions import Abort, Exit
+
+    from ..errors import ExitCode
+    from ..io import output_set
+
+    root = _root()
+    try:
+        with root.make_context("terradyn", list(args)) as ctx:
+            with output_set():
+                root.invoke(ctx)
+    except click.exceptions.NoArgsIsHelpError as exc:
+        sys.stderr.write(exc.ctx.get_help() + "\n")
+        return ExitCode.USAGE
+    except Exit as exc:
+        return int(getattr(exc, "exit_code", 0) or 0)
+    except Abort:
+        raise KeyboardInterrupt from None
+    except click.exceptions.ClickException as exc:
+        sys.stderr.write(f"terradyn: error: {_usage_message(exc)}\n")
+        return ExitCode.USAGE if isinstance(exc, click.exceptions.UsageError) else ExitCode.INPUT
+    return ExitCode.OK
+
+
+def _interrupted(exc: KeyboardInterrupt) -> int:
+    terminated = _terminated or isinstance(exc, _Terminated)
+    what = "terminated" if terminated else "interrupted"
+    detail = getattr(exc, "message", "") or ""
+    sys.stderr.write(f"terradyn: {what}{'; ' + detail if detail else ''}\n")
+    return 143 if terminated else 130
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Run the CLI: errors become one line on stderr and a non-zero exit code, never a traceback."""
-    args = sys.argv[1:] if argv is None else list(argv)
-    if not args:
-        args = ["--help"]
+    """Run the CLI: every ending is one line on stderr (none on success) and an exit code."""
+    previous = None
     try:
-        app(args=args, prog_name="terradyn", standalone_mode=False)
-    except TerradynError as exc:
-        typer.echo(f"terradyn: error: {exc}", err=True)
-        sys.exit(exc.exit_code)
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    except ValueError:  # not the main thread (embedded use): leave signals alone
+        pass
+    code = 70
+    try:
+        code = _guarded(sys.argv[1:] if argv is None else list(argv))
+    except KeyboardInterrupt as exc:
+        code = _interrupted(exc)
+    finally:
+        if previous is not None:
+            try:
+                signal.signal(signal.SIGTERM, previous)
+            except (ValueError, TypeError):
+                pass
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:
+        _silence_stdout()
+    sys.exit(code)
+
+
+def _silence_stdout() -> None:
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
+
+
+def _root_help() -> str:
+    width = max(len(n) for n in COMMANDS) + 2
+    lines = ["Usage: terradyn [OPTIONS] COMMAND [ARGS]...", "", *("  " + ln for ln in _HELP.splitlines()), ""]
+    lines += ["Options:", "  --version      Print the version and exit.",
+              "  --threads N    Worker threads for compiled kernels (default: the TERRADYN_THREADS",
+              "                 variable, else the number of cores).",
+              "  -h, --help     Show this message and exit.", "", "Commands:"]  # fmt: skip
+    lines += [f"  {name.ljust(width)}{about}" for name, (_, _, about) in COMMANDS.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _guarded(args: list[str]) -> int:
+    """Run and turn every exception except interrupts into (one line, exit code)."""
+    if args == ["--version"]:  # answered without importing the command line framework
+        from .. import __version__
+
+        sys.stdout.write(f"terradyn {__version__}\n")
+        return 0
+    if args in ([], ["--help"], ["-h"]):
+        (sys.stdout if args else sys.stderr).write(_root_help())
+        return 0 if args else 2
+    try:
+        from ..errors import ExitCode, InputError, TerradynError
     except KeyboardInterrupt:
-        typer.echo("terradyn: interrupted", err=True)
-        sys.exit(130)
+        raise
+    try:
+        return _run(args)
+    except KeyboardInterrupt:
+        raise
+    except InputError as exc:
+        from .options import flag_for
+
+        sys.stderr.write(f"terradyn: error: {exc.render(flag_for(exc.field))}\n")
+        return exc.exit_code
+    except TerradynError as exc:
+        sys.stderr.write(f"terradyn: error: {' '.join(str(exc).split())}\n")
+        return int(exc.exit_code)
+    except BrokenPipeError:
+        _silence_stdout()
+        return 141
     except Exception as exc:
-        kind = type(exc).__name__
-        if kind == "Exit":  # typer.Exit / click Exit
-            sys.exit(getattr(exc, "exit_code", 0))
-        if kind == "Abort":
-            typer.echo("terradyn: aborted", err=True)
-            sys.exit(130)
-        if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):  # usage errors
-            typer.echo(f"terradyn: error: {exc.format_message()}", err=True)
-            sys.exit(exc.exit_code)
         if os.environ.get("TERRADYN_DEBUG"):
             raise
-        typer.echo(
-            f"terradyn: internal error: {kind}: {exc} "
-            "(set TERRADYN_DEBUG=1 for a traceback and please report it)",
-            err=True,
+        text = " ".join(str(exc).split())[:300]
+        sys.stderr.write(
+            f"terradyn: internal error: {type(exc).__name__}: {text} "
+            "(set TERRADYN_DEBUG=1 for a traceback and please report it)\n"
         )
-        sys.exit(70)
-    sys.exit(0)
+        return ExitCode.INTERNAL

@@ -2,37 +2,38 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import typer
 
 from ..errors import InputError
 from ._common import OutputFormat, emit
+from .options import FORMAT, OUT, input_file, out_file
 
-app = typer.Typer(help="Fit RFT or Bekker parameters to measurements.", no_args_is_help=True)
-
-
-def register(root: typer.Typer) -> None:
-    root.add_typer(app, name="calibrate")
+app = typer.Typer(
+    help="Fit RFT or Bekker parameters to measurements.", no_args_is_help=True, rich_markup_mode=None
+)
 
 
 @app.command("rft")
 def calibrate_rft(
-    data: Path = typer.Argument(..., help="CSV: depth_m, force_z_N [, force_x_N, angle_deg, direction_deg]."),
-    plate_length: float = typer.Option(..., "--plate-length", help="Plate length [m]."),
-    plate_width: float = typer.Option(..., "--plate-width", help="Plate width [m]."),
+    data: str = typer.Argument(..., help="CSV: depth_m, force_z_N [, force_x_N, angle_deg, direction_deg]."),
+    length: float = typer.Option(..., "--length", help="Plate length [m]."),
+    width: float = typer.Option(..., "--width", help="Plate width (out of plane) [m]."),
     full: bool = typer.Option(False, "--full", help="Fit all nine coefficients, not only zeta."),
     name: str = typer.Option("calibrated", "--name", help="Name of the new material."),
-    material_out: Path | None = typer.Option(None, "--material-out", help="Write a material TOML."),
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the report to this file."),
+    material_out: str | None = typer.Option(None, "--material-out", help="Write a material TOML (.toml)."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
 ) -> None:
     """Fit the RFT scale zeta (or the full alpha fit) to plate force-depth data."""
     from ..rft.calibration import fit_rft, read_plate_force_csv, write_rft_material_toml
 
-    if material_out is not None and material_out.suffix != ".toml":
-        raise InputError("--material-out", str(material_out), "a path ending in .toml")
-    fit = fit_rft(read_plate_force_csv(data), plate_length=plate_length, plate_width=plate_width, full=full)
+    data_path = input_file("DATA", data)
+    assert data_path is not None
+    toml_path = out_file("--material-out", material_out, (".toml",))
+    out_path = out_file("--out", out)
+    if not name.strip():
+        raise InputError("--name", name, "a non-empty material name")
+    fit = fit_rft(read_plate_force_csv(data_path), plate_length=length, plate_width=width, full=full)
     rec = {
         "zeta_N_per_m3": fit.zeta,
         "r_squared": fit.r_squared,
@@ -43,23 +44,23 @@ def calibrate_rft(
     if fit.full:
         for key, value in zip(fit.rft.coefficients.names(), fit.rft.coefficients.as_array(), strict=True):
             rec[f"{key}_N_per_m3"] = float(value) * fit.rft.scale
-    if material_out is not None:
-        write_rft_material_toml(material_out, name, fit, source=data.name)
-    emit(rec, fmt, out)
+    if toml_path is not None:
+        write_rft_material_toml(toml_path, name, fit, source=data_path.name)
+    emit(rec, fmt, out_path)
 
 
 @app.command("bekker")
 def calibrate_bekker(
-    plates: Path = typer.Option(..., "--plates", help="CSV: plate_width_m, sinkage_m, pressure_Pa."),
-    shear: Path | None = typer.Option(
+    plates: str = typer.Option(..., "--plates", help="CSV: plate_width_m, sinkage_m, pressure_Pa."),
+    shear: str | None = typer.Option(
         None, "--shear", help="CSV: normal_stress_Pa, shear_displacement_m, shear_stress_Pa."
     ),
     name: str = typer.Option("calibrated", "--name", help="Name of the new material."),
-    material_out: Path | None = typer.Option(
-        None, "--material-out", help="Write a material TOML (needs --shear)."
+    material_out: str | None = typer.Option(
+        None, "--material-out", help="Write a material TOML (.toml; needs --shear)."
     ),
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the report to this file."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
 ) -> None:
     """Fit k_c, k_phi, n to plate-sinkage tests (two or more widths) and c, phi, K to shear tests."""
     import math
@@ -73,9 +74,16 @@ def calibrate_bekker(
         write_material_toml,
     )
 
-    if material_out is not None and (shear is None or material_out.suffix != ".toml"):
-        raise InputError("--material-out", str(material_out), "a .toml path, together with --shear")
-    pfit = fit_bekker(read_plate_sinkage_csv(plates))
+    plates_path = input_file("--plates", plates)
+    shear_path = input_file("--shear", shear)
+    assert plates_path is not None
+    toml_path = out_file("--material-out", material_out, (".toml",))
+    out_path = out_file("--out", out)
+    if toml_path is not None and shear_path is None:
+        raise InputError("--material-out", material_out, "a .toml path, together with --shear")
+    if not name.strip():
+        raise InputError("--name", name, "a non-empty material name")
+    pfit = fit_bekker(read_plate_sinkage_csv(plates_path))
     rec: dict[str, object] = {
         "k_c_N_per_m_n1": pfit.k_c,
         "k_phi_N_per_m_n2": pfit.k_phi,
@@ -84,8 +92,8 @@ def calibrate_bekker(
         "pressure_rms_residual_Pa": pfit.rms_residual,
         "plate_widths": len(pfit.plate_widths),
     }
-    if shear is not None:
-        sfit = fit_shear(read_shear_csv(shear))
+    if shear_path is not None:
+        sfit = fit_shear(read_shear_csv(shear_path))
         rec.update(
             {
                 "cohesion_Pa": sfit.cohesion,
@@ -95,16 +103,17 @@ def calibrate_bekker(
                 "shear_rms_residual_Pa": sfit.rms_residual,
             }
         )
-        if material_out is not None:
+        if toml_path is not None:
             notes = (
                 f"Bekker and Janosi-Hanamoto parameters fitted by terradyn calibrate bekker to "
-                f"{plates.name} (R^2 = {pfit.r_squared:.4f}) and {shear.name} (R^2 = {sfit.r_squared:.4f})."
+                f"{plates_path.name} (R^2 = {pfit.r_squared:.4f}) and {shear_path.name} "
+                f"(R^2 = {sfit.r_squared:.4f})."
             )
             write_material_toml(
-                material_out,
+                toml_path,
                 name,
                 bekker=combine_fits(pfit, sfit),
                 description="Bekker fit to plate-sinkage and shear tests",
                 notes=notes,
             )
-    emit(rec, fmt, out)
+    emit(rec, fmt, out_path)

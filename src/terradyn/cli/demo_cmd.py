@@ -1,20 +1,21 @@
-"""``terradyn demo``: the built-in default study."""
+"""``terradyn demo``: compile the kernels, then run the built-in default study into a folder."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import typer
 
-
-def register(app: typer.Typer) -> None:
-    app.command("demo")(demo)
+from .options import OUT_FOLDER_HELP, out_folder
 
 
 def demo(
-    out: Path = typer.Option(Path("terradyn-demo"), "--out", help="Folder for tables and plots."),
+    out: str = typer.Option("terradyn-demo", "--out", help=OUT_FOLDER_HELP),
 ) -> None:
-    """Run the headline study and write its tables and plots to a folder."""
+    """Run the headline study (rigid wheel force-slip, RFT vs Wong-Reece) and write tables and plots."""
     from ..studies.demo import run_demo
+    from ._common import progress
 
-    run_demo(out)
+    folder = out_folder("--out", out)
+    assert folder is not None
+    with progress(1, "terradyn demo") as advance:
+        run_demo(folder)
+        advance(1)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import typer
 
@@ -13,19 +12,16 @@ from ..kinematics import Pose2D, Twist2D
 from ..studies.intrusion import intrusion_forces
 from ._bodies import BodyKind, BodyOptions, build_body
 from ._common import OutputFormat, emit, parse_float_list, save_figure
-
-
-def register(app: typer.Typer) -> None:
-    app.command("intrude")(intrude)
+from .options import ANGLE, DIRECTION, ELEMENT_SIZE, FORMAT, MATERIAL, OUT, PLOT, out_file, plot_file
 
 
 def intrude(
     body: BodyKind = typer.Argument(..., help="Body shape."),
     depth: str = typer.Option(..., "--depth", help="Depth of the body origin [m]: 0.03, list or a:b:n."),
-    angle: float = typer.Option(0.0, "--angle", help="Body rotation about +y [deg], clockwise."),
-    direction: float = typer.Option(90.0, "--direction", help="Motion direction below +x [deg]."),
-    material: str = typer.Option("generic", "--material", help="Medium name or TOML file."),
-    element_size: float | None = typer.Option(None, "--element-size", help="Element size [m]."),
+    angle: float = ANGLE,
+    direction: float = DIRECTION,
+    material: str = MATERIAL,
+    element_size: float | None = ELEMENT_SIZE,
     length: float | None = BodyOptions.length,
     width: float = BodyOptions.width,
     thickness: float | None = BodyOptions.thickness,
@@ -41,12 +37,15 @@ def intrude(
     flap_count: int | None = BodyOptions.flap_count,
     flap_length: float | None = BodyOptions.flap_length,
     flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: Path | None = BodyOptions.points_file,
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
-    plot: Path | None = typer.Option(None, "--plot", help="Plot force vs depth (or tractions)."),
+    points_file: str | None = BodyOptions.points_file,
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = PLOT,
 ) -> None:
-    """RFT force [N] and torque [N m] on BODY moving through the medium (quasi-static)."""
+    """RFT force [N] and torque [N m] on BODY moving through the medium (quasi-static).
+
+    With one depth --plot draws the per-element tractions; with several, force against depth."""
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     depths = parse_float_list("--depth", depth)
     shape = build_body(
         body,
@@ -71,14 +70,14 @@ def intrude(
     theta = math.radians(check_finite("--angle", angle))
     direc = math.radians(check_finite("--direction", direction))
     table = intrusion_forces(shape, mat, depths, angle=theta, direction=direc, element_size=element_size)
-    if plot is not None:
-        _plot(shape, mat, table, depths, theta, direc, element_size, plot)
+    if plot_path is not None:
+        _plot(shape, mat, table, depths, theta, direc, element_size, plot_path)
     rows = table.records()
     if len(rows) == 1:
         rec = rows[0]
-        emit({k: rec[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out)
+        emit({k: rec[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out_path)
     else:
-        emit(rows, fmt, out, title=f"{body.value} in {mat.name}")
+        emit(rows, fmt, out_path, title=f"{body.value} in {mat.name}")
 
 
 def _plot(shape, mat, table, depths, theta, direc, element_size, path):

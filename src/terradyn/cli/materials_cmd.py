@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from typing import Any
 
 import typer
 
 from .. import materials
 from ._common import OutputFormat, emit
+from .options import FORMAT, OUT, out_file
 
-app = typer.Typer(help="Granular media and their parameters.", no_args_is_help=True)
+app = typer.Typer(help="Granular media and their parameters.", no_args_is_help=True, rich_markup_mode=None)
 
 
 def material_record(mat: materials.Material) -> dict[str, Any]:
@@ -60,10 +60,11 @@ def material_record(mat: materials.Material) -> dict[str, Any]:
 
 @app.command("list")
 def list_(
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
 ) -> None:
     """List the shipped media."""
+    out_path = out_file("--out", out)
     rows = []
     for name in materials.available():
         m = materials.get(name)
@@ -76,18 +77,19 @@ def list_(
                 "description": m.description,
             }
         )
-    emit(rows, fmt, out, title="terradyn media")
+    emit(rows, fmt, out_path, title="terradyn media")
 
 
 @app.command("show")
 def show(
     name: str = typer.Argument(..., help="Medium name or a path to a material TOML file."),
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
 ) -> None:
     """Show every parameter of one medium, with its source."""
+    out_path = out_file("--out", out)
     rec = material_record(materials.get(name))
     if fmt is OutputFormat.table:
-        emit([{"parameter": k, "value": v} for k, v in rec.items()], fmt, out, title=name)
+        emit([{"parameter": k, "value": v} for k, v in rec.items()], fmt, out_path, title=name)
     else:
-        emit(rec, fmt, out)
+        emit(rec, fmt, out_path)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -14,15 +14,27 @@ import typer
 from .. import materials
 from ..errors import InputError, check_finite
 from ._bodies import BodyKind, BodyOptions, build_body
-from ._common import OutputFormat, atomic_write_text, emit, save_figure
-
-app = typer.Typer(
-    help="Plane-strain MPM continuum solver (Dunatunga-Kamrin granular model).", no_args_is_help=True
+from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure
+from .options import (
+    ANGLE,
+    ANIMATE,
+    DIRECTION,
+    FORMAT,
+    MATERIAL,
+    OUT,
+    WHEEL_RADIUS,
+    WHEEL_WIDTH,
+    animation_file,
+    out_file,
+    out_folder,
+    plot_file,
 )
 
-
-def register(root: typer.Typer) -> None:
-    root.add_typer(app, name="mpm")
+app = typer.Typer(
+    help="Plane-strain MPM continuum solver (Dunatunga-Kamrin granular model).",
+    no_args_is_help=True,
+    rich_markup_mode=None,
+)
 
 
 class MPMOptions:
@@ -30,64 +42,89 @@ class MPMOptions:
     ppc = typer.Option(2, "--particles-per-cell", help="Particles per cell along each axis.")
     packing = typer.Option("consolidated", "--packing", help="consolidated or unconsolidated bed.")
     walls = typer.Option(None, "--walls", help="Wall condition: free-slip, no-slip or frictional.")
-    checkpoint = typer.Option(None, "--checkpoint", help="Checkpoint file (written atomically).")
-    checkpoint_interval = typer.Option(600.0, "--checkpoint-interval", help="Wall-clock seconds.")
-    resume = typer.Option(False, "--resume", help="Continue a killed run from --checkpoint.")
-    snapshots = typer.Option(None, "--snapshots", help="Folder for particle snapshots (NetCDF).")
-    series = typer.Option(None, "--series", help="Time series CSV.")
-    fields = typer.Option(
-        None, "--fields", help="Plot of particle speed and pressure at the end of the run (PNG/PDF)."
+    checkpoint = typer.Option(
+        None, "--checkpoint", help="Checkpoint file (.npz), written atomically, on Ctrl-C and at the end."
     )
-    animate = typer.Option(None, "--animate", help="Animation of particle speed (GIF or MP4).")
-    frames = typer.Option(40, "--frames", help="Frames in the --animate animation.")
-
-
-@contextmanager
-def _progress_bar(label: str) -> Iterator[Callable[[float, float], None]]:
-    import os
-    import sys
-
-    if not sys.stderr.isatty() or os.environ.get("CI"):
-        yield lambda t, f: None
-        return
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
-
-    with Progress(
-        TextColumn(label),
-        BarColumn(),
-        TextColumn("t = {task.fields[t]:.4f} s"),
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        transient=True,
-    ) as bar:
-        task = bar.add_task(label, total=1.0, t=0.0)
-
-        def update(t: float, fraction: float) -> None:
-            bar.update(task, completed=fraction, t=t)
-
-        yield update
+    checkpoint_interval = typer.Option(
+        60.0, "--checkpoint-interval", help="Wall-clock seconds [s] between checkpoints."
+    )
+    resume = typer.Option(False, "--resume", help="Continue the run saved in --checkpoint (it must exist).")
+    snapshots = typer.Option(
+        None, "--snapshots", help="Folder for particle snapshots (NetCDF, fields extra)."
+    )
+    series = typer.Option(None, "--series", help="Time series file (.csv).")
+    fields = typer.Option(
+        None, "--fields", help="Particle speed and pressure at the end of the run (.png/.pdf/.svg/.jpg)."
+    )
+    frames = typer.Option(40, "--frames", help="Frames in the --animate animation (2-500).")
+    record_interval = typer.Option(
+        None,
+        "--record-interval",
+        help="Simulated time [s] per time-series row (default: a quarter cell of travel).",
+    )
+    snapshot_interval = typer.Option(
+        None,
+        "--snapshot-interval",
+        help="Simulated time [s] between --snapshots files (default: 4 cells of travel).",
+    )
+    plot = typer.Option(None, "--plot", help="Force history plot (.png/.pdf/.svg/.jpg).")
 
 
 def _write_series(result: Any, path: Path | None) -> None:
     if path is not None:
-        atomic_write_text(path, result.to_dataframe().to_csv(index=False))
+        atomic_write_text(path, result.to_dataframe().to_csv(index=False), field_name="--series")
 
 
-def _check_field_outputs(plot: Path | None, fields: Path | None, animate: Path | None, frames: int) -> int:
-    """Validate the plot options before the run; returns the frame count to keep."""
-    from ..plotting.animation import check_animation_path
-    from ._common import check_figure_path
+class _Outputs:
+    """Every MPM output path, checked before the run."""
 
-    if plot is not None:
-        check_figure_path(plot, "--plot")
-    if fields is not None:
-        check_figure_path(fields, "--fields")
-    if animate is None:
-        return 0
-    check_animation_path(animate, "--animate")
-    if not 2 <= frames <= 500:
-        raise InputError("--frames", frames, "an integer in [2, 500]")
-    return frames
+    def __init__(self, *, out: str | None, plot: str | None, series: str | None, fields: str | None,
+                 animate: str | None, frames: int, snapshots: str | None, checkpoint: str | None,
+                 resume: bool) -> None:  # fmt: skip
+        self.out = out_file("--out", out)
+        self.plot = plot_file("--plot", plot)
+        self.series = out_file("--series", series, (".csv",))
+        self.fields = plot_file("--fields", fields)
+        self.animate = animation_file("--animate", animate)
+        self.snapshots = out_folder("--snapshots", snapshots)
+        if self.snapshots is not None:
+            import importlib.util
+
+            if importlib.util.find_spec("xarray") is None:
+                raise InputError(
+                    "--snapshots", snapshots, "the fields extra (pip install 'terradyn[fields]')"
+                )
+        self.checkpoint = out_file("--checkpoint", checkpoint, (".npz",), "checkpoint file")
+        if resume and self.checkpoint is None:
+            raise InputError("--resume", True, "together with --checkpoint FILE")
+        if resume and self.checkpoint is not None and not self.checkpoint.is_file():
+            raise InputError("--checkpoint", checkpoint, "an existing checkpoint file with --resume",
+                             "no such file: run without --resume to start")  # fmt: skip
+        if not resume and self.checkpoint is not None and self.checkpoint.exists():
+            raise InputError("--checkpoint", checkpoint, "a new file, or --resume to continue the run in it",
+                             "remove the file to start afresh")  # fmt: skip
+        self.frames = 0
+        if self.animate is not None:
+            if not 2 <= frames <= 500:
+                raise InputError("--frames", frames, "an integer in [2, 500]")
+            self.frames = frames
+
+
+@contextmanager
+def _interruptible(outputs: _Outputs) -> Iterator[None]:
+    """Turn an interrupt into one line saying where the run stopped and how to continue it."""
+    try:
+        yield
+    except KeyboardInterrupt as exc:
+        t = getattr(exc, "time_s", None)
+        at = f" at t = {t:.4g} s" if isinstance(t, float) else ""
+        if outputs.checkpoint is not None and outputs.checkpoint.exists():
+            exc.message = (  # type: ignore[attr-defined]
+                f"run stopped{at}; checkpoint in {outputs.checkpoint}: rerun the same command with --resume"
+            )
+        else:
+            exc.message = f"run stopped{at}; nothing saved (use --checkpoint FILE to keep work)"  # type: ignore[attr-defined]
+        raise
 
 
 def _field_outputs(result: Any, fields: Path | None, animate: Path | None) -> None:
@@ -133,10 +170,10 @@ def _plot_series(result: Any, path: Path, keys: tuple[str, ...]) -> None:
 def intrude(
     body: BodyKind = typer.Argument(..., help="Body shape."),
     depth: float = typer.Option(..., "--depth", help="Depth [m] of the reference point for the report."),
-    angle: float = typer.Option(0.0, "--angle", help="Body rotation about +y [deg], clockwise."),
-    direction: float = typer.Option(90.0, "--direction", help="Motion direction below +x [deg]."),
+    angle: float = ANGLE,
+    direction: float = DIRECTION,
     speed: float = typer.Option(0.05, "--speed", help="Intrusion speed [m/s]."),
-    material: str = typer.Option("MS", "--material", help="Medium name or TOML file."),
+    material: str = MATERIAL,
     length: float | None = BodyOptions.length,
     width: float = BodyOptions.width,
     thickness: float | None = BodyOptions.thickness,
@@ -152,7 +189,7 @@ def intrude(
     flap_count: int | None = BodyOptions.flap_count,
     flap_length: float | None = BodyOptions.flap_length,
     flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: Path | None = BodyOptions.points_file,
+    points_file: str | None = BodyOptions.points_file,
     cell_size: float | None = MPMOptions.cell_size,
     particles_per_cell: int = MPMOptions.ppc,
     packing: str = MPMOptions.packing,
@@ -160,20 +197,16 @@ def intrude(
     checkpoint: Path | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
-    record_spacing: float | None = typer.Option(
-        None, "--record-spacing", help="Travel [m] per time-series row (default cell/4)."
-    ),
-    snapshot_spacing: float | None = typer.Option(
-        None, "--snapshot-spacing", help="Travel [m] between --snapshots files (default 4 cells)."
-    ),
-    snapshots: Path | None = MPMOptions.snapshots,
-    series: Path | None = MPMOptions.series,
-    fields: Path | None = MPMOptions.fields,
-    animate: Path | None = MPMOptions.animate,
+    record_interval: float | None = MPMOptions.record_interval,
+    snapshot_interval: float | None = MPMOptions.snapshot_interval,
+    snapshots: str | None = MPMOptions.snapshots,
+    series: str | None = MPMOptions.series,
+    fields: str | None = MPMOptions.fields,
+    animate: str | None = ANIMATE,
     frames: int = MPMOptions.frames,
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the summary to this file."),
-    plot: Path | None = typer.Option(None, "--plot", help="Force history plot (PNG/PDF)."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = MPMOptions.plot,
 ) -> None:
     """Push BODY into a settled bed with MPM; force and torque as its reference point passes --depth."""
     from ..mpm import run_intrusion
@@ -197,10 +230,14 @@ def intrude(
         flap_angle=flap_angle,
         points_file=points_file,
     )
-    if resume and checkpoint is None:
-        raise InputError("--resume", True, "together with --checkpoint FILE")
-    frame_count = _check_field_outputs(plot, fields, animate, frames)
-    with _progress_bar("MPM intrusion") as bar:
+    outs = _Outputs(out=out, plot=plot, series=series, fields=fields, animate=animate, frames=frames,
+                    snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip
+    speed = check_finite("--speed", speed)
+    if not speed > 0:
+        raise InputError("--speed", speed, "a speed > 0 [m/s]")
+    record_spacing = _spacing("--record-interval", record_interval, speed)
+    snapshot_spacing = _spacing("--snapshot-interval", snapshot_interval, speed)
+    with _interruptible(outs), fraction_progress("MPM intrusion", "s") as bar:
         res = run_intrusion(
             shape,
             materials.get(material),
@@ -212,26 +249,36 @@ def intrude(
             particles_per_cell=particles_per_cell,
             packing=packing,
             walls=walls,
-            checkpoint_path=checkpoint,
+            checkpoint_path=outs.checkpoint,
             checkpoint_interval=checkpoint_interval,
             resume=resume,
             record_spacing=record_spacing,
             snapshot_spacing=snapshot_spacing,
-            snapshot_dir=snapshots,
+            snapshot_dir=outs.snapshots,
             progress=bar,
-            frame_count=frame_count,
+            frame_count=outs.frames,
         )
-    _write_series(res, series)
-    _field_outputs(res, fields, animate)
-    if plot is not None:
-        _plot_series(res, plot, ("force_x_N", "force_z_N"))
-    emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out)
+    _write_series(res, outs.series)
+    _field_outputs(res, outs.fields, outs.animate)
+    if outs.plot is not None:
+        _plot_series(res, outs.plot, ("force_x_N", "force_z_N"))
+    emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, outs.out)
+
+
+def _spacing(flag: str, interval: float | None, speed: float) -> float | None:
+    """Travel [m] of the body in ``interval`` simulated seconds."""
+    if interval is None:
+        return None
+    interval = check_finite(flag, interval)
+    if not interval > 0:
+        raise InputError(flag, interval, "a time > 0 [s]")
+    return interval * speed
 
 
 @app.command("wheel")
 def wheel(
-    material: str = typer.Option("MS", "--material", help="Medium name or TOML file."),
-    load: float = typer.Option(..., "--load", help="Vertical load [N]."),
+    material: str = MATERIAL,
+    load: float = typer.Option(..., "--load", help="Vertical load W [N]."),
     omega: float | None = typer.Option(None, "--omega", help="Spin rate [rad/s] (or --drive-torque)."),
     slip: float | None = typer.Option(None, "--slip", help="Imposed slip; omit for self-propelled."),
     drive_torque: float | None = typer.Option(
@@ -242,8 +289,8 @@ def wheel(
         0.0, "--drawbar-load", help="Horizontal load on the axle [N] (+ backwards) when x is free."
     ),
     duration: float | None = typer.Option(None, "--duration", help="Driving time [s]."),
-    radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
-    width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
+    radius: float | None = WHEEL_RADIUS,
+    width: float = WHEEL_WIDTH,
     shape: str = typer.Option("circular", "--shape", help="circular, grousered or flapped."),
     grouser_count: int | None = BodyOptions.grouser_count,
     grouser_height: float | None = BodyOptions.grouser_height,
@@ -261,19 +308,21 @@ def wheel(
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
     record_interval: float | None = typer.Option(
-        None, "--record-interval", help="Simulated seconds per time-series row (default duration/200)."
+        None, "--record-interval", help="Simulated time [s] per time-series row (default duration/200)."
     ),
     snapshot_interval: float | None = typer.Option(
-        None, "--snapshot-interval", help="Simulated seconds between --snapshots files (default duration/20)."
+        None,
+        "--snapshot-interval",
+        help="Simulated time [s] between --snapshots files (default duration/20).",
     ),
-    snapshots: Path | None = MPMOptions.snapshots,
-    series: Path | None = MPMOptions.series,
-    fields: Path | None = MPMOptions.fields,
-    animate: Path | None = MPMOptions.animate,
+    snapshots: str | None = MPMOptions.snapshots,
+    series: str | None = MPMOptions.series,
+    fields: str | None = MPMOptions.fields,
+    animate: str | None = ANIMATE,
     frames: int = MPMOptions.frames,
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the summary to this file."),
-    plot: Path | None = typer.Option(None, "--plot", help="Force history plot (PNG/PDF)."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = MPMOptions.plot,
 ) -> None:
     """Wheel on a settled MPM bed: forced slip (--slip), self-propelled at --omega (optionally towing
     --drawbar-load), or torque-driven (--drive-torque); sinkage, pull, torque and slip."""
@@ -303,10 +352,9 @@ def wheel(
             },
         ),
     )
-    if resume and checkpoint is None:
-        raise InputError("--resume", True, "together with --checkpoint FILE")
-    frame_count = _check_field_outputs(plot, fields, animate, frames)
-    with _progress_bar("MPM wheel") as bar:
+    outs = _Outputs(out=out, plot=plot, series=series, fields=fields, animate=animate, frames=frames,
+                    snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip
+    with _interruptible(outs), fraction_progress("MPM wheel", "s") as bar:
         res = run_wheel(
             body,
             materials.get(material),
@@ -321,19 +369,19 @@ def wheel(
             particles_per_cell=particles_per_cell,
             packing=packing,
             walls=walls,
-            checkpoint_path=checkpoint,
+            checkpoint_path=outs.checkpoint,
             checkpoint_interval=checkpoint_interval,
             resume=resume,
             record_interval=record_interval,
             snapshot_interval=snapshot_interval,
-            snapshot_dir=snapshots,
+            snapshot_dir=outs.snapshots,
             progress=bar,
-            frame_count=frame_count,
+            frame_count=outs.frames,
         )
-    _write_series(res, series)
-    _field_outputs(res, fields, animate)
-    if plot is not None:
-        _plot_series(res, plot, ("drawbar_pull_N", "force_z_N", "sinkage_m"))
+    _write_series(res, outs.series)
+    _field_outputs(res, outs.fields, outs.animate)
+    if outs.plot is not None:
+        _plot_series(res, outs.plot, ("drawbar_pull_N", "force_z_N", "sinkage_m"))
     keys = (
         "sinkage_m",
         "drawbar_pull_N",
@@ -345,4 +393,4 @@ def wheel(
         "omega_rad_s",
         "forward_speed_m_s",
     )
-    emit({k: res.summary[k] for k in keys if k in res.summary}, fmt, out)
+    emit({k: res.summary[k] for k in keys if k in res.summary}, fmt, outs.out)

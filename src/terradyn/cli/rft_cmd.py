@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import typer
@@ -12,32 +11,36 @@ from .. import materials
 from ..errors import InputError, check_finite
 from ..rft import li2013_alpha_material
 from ._common import OutputFormat, emit, save_figure
+from .options import FORMAT, MATERIAL, OUT, PLOT, out_file, plot_file
 
-app = typer.Typer(help="Granular resistive force theory (Li et al. 2013 law).", no_args_is_help=True)
+app = typer.Typer(
+    help="Granular resistive force theory (Li et al. 2013 law).", no_args_is_help=True, rich_markup_mode=None
+)
 
 
 @app.command("alpha")
 def alpha(
-    material: str = typer.Option("generic", "--material", help="Medium name or TOML file."),
+    material: str = MATERIAL,
     beta: float | None = typer.Option(None, "--beta", help="Element orientation beta [deg]."),
     gamma: float | None = typer.Option(None, "--gamma", help="Direction of motion gamma [deg]."),
     grid: bool = typer.Option(False, "--grid", help="Tabulate the whole alpha map instead."),
     step: float = typer.Option(5.0, "--step", help="Grid step [deg] for --grid."),
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
-    plot: Path | None = typer.Option(None, "--plot", help="Heat-map plot of the grid (PNG/PDF)."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = PLOT,
 ) -> None:
     """Stress per depth (alpha_x, alpha_z) [N/m^3] at one (beta, gamma), or the whole map (--grid)."""
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     mat = materials.get(material)
     if not grid:
         if beta is None or gamma is None:
             raise InputError("--beta/--gamma", (beta, gamma), "both angles in degrees, or --grid")
-        if plot is not None:
+        if plot_path is not None:
             raise InputError("--plot", str(plot), "only with --grid")
         b = math.radians(check_finite("--beta", beta))
         g = math.radians(check_finite("--gamma", gamma))
         ax, az = li2013_alpha_material(b, g, mat)
-        emit({"alpha_x_N_per_m3": float(ax), "alpha_z_N_per_m3": float(az)}, fmt, out)
+        emit({"alpha_x_N_per_m3": float(ax), "alpha_z_N_per_m3": float(az)}, fmt, out_path)
         return
     if not (0.25 <= check_finite("--step", step) <= 45.0):
         raise InputError("--step", step, "a grid step in [0.25, 45] degrees")
@@ -55,7 +58,7 @@ def alpha(
             np.degrees(bb).ravel(), np.degrees(gg).ravel(), map_x.ravel(), map_z.ravel(), strict=True
         )
     ]
-    if plot is not None:
+    if plot_path is not None:
         import matplotlib.pyplot as plt
 
         from ..plotting import plot_alpha_map
@@ -64,5 +67,5 @@ def alpha(
         plot_alpha_map(bb, gg, map_z, label=r"$\alpha_z$", ax=axes[0])
         plot_alpha_map(bb, gg, map_x, label=r"$\alpha_x$", ax=axes[1])
         fig.suptitle(f"RFT alpha map, {mat.name}")
-        save_figure(fig, plot)
-    emit(rows, fmt, out, title=f"alpha map, {mat.name}")
+        save_figure(fig, plot_path)
+    emit(rows, fmt, out_path, title=f"alpha map, {mat.name}")

@@ -2,48 +2,58 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import typer
 
 from ..errors import InputError
-from ._common import OutputFormat, atomic_write_text, emit, save_figure
+from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure, spinner
+from .options import FORMAT, OUT, OUT_FOLDER_HELP, QUICK, input_file, out_file, out_folder
 
-app = typer.Typer(help="Reproducible studies (thesis experiments).", no_args_is_help=True)
-
-
-def register(root: typer.Typer) -> None:
-    root.add_typer(app, name="study")
+app = typer.Typer(
+    help="Reproducible studies (thesis experiments).", no_args_is_help=True, rich_markup_mode=None
+)
 
 
 @app.command("list")
 def list_(
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
 ) -> None:
     """List the built-in studies."""
     from ..studies.registry import STUDIES, _load_plugins
 
+    out_path = out_file("--out", out)
     _load_plugins()
-    emit([{"study": k, "about": v[2]} for k, v in sorted(STUDIES.items())], fmt, out)
+    emit([{"study": k, "about": v[2]} for k, v in sorted(STUDIES.items())], fmt, out_path)
 
 
 @app.command("run")
 def run(
     study: str = typer.Argument(..., help="Study name (see `study list`) or a study TOML file."),
-    out: Path = typer.Option(Path("terradyn-study"), "--out", help="Folder for tables and plots."),
+    out: str = typer.Option("terradyn-study", "--out", help=OUT_FOLDER_HELP),
     material: str | None = typer.Option(None, "--material", help="Override the study's medium."),
-    quick: bool = typer.Option(False, "--quick", help="Reduced resolution."),
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Summary format."),
+    quick: bool = QUICK,
+    fmt: OutputFormat = FORMAT,
 ) -> None:
     """Run a study; write its tables (CSV) and plots (PNG) to a folder and print a summary."""
-    from ..studies.registry import run_study
+    from ..io import current_output_set
+    from ..studies.registry import STUDIES, _load_plugins, run_study
 
-    if out.exists() and not out.is_dir():
-        raise InputError("--out", str(out), "a folder path")
+    folder = out_folder("--out", out)
+    assert folder is not None
+    _load_plugins()
+    if study.endswith(".toml"):
+        input_file("STUDY", study)
+    elif study not in STUDIES:
+        raise InputError("STUDY", study, f"a study name ({', '.join(sorted(STUDIES))}) or a .toml file")
     overrides = {"material": material} if material else {}
-    kind, result = run_study(study, quick=quick, overrides=overrides)
-    out.mkdir(parents=True, exist_ok=True)
+    with spinner(f"study {study}"):
+        kind, result = run_study(study, quick=quick, overrides=overrides)
+    outs = current_output_set()
+    if outs is not None:
+        outs.folder(folder)
+    else:
+        folder.mkdir(parents=True, exist_ok=True)
+    out = folder
     for name, table in result.tables.items():
         atomic_write_text(out / f"{name}.csv", table.to_dataframe().to_csv(index=False))
     for name, fig in result.figures.items():
@@ -54,38 +64,44 @@ def run(
 @app.command("high-speed")
 def high_speed(
     material: str = typer.Option("poppy-cp", "--material", help="Medium with a critical density."),
-    models: str = typer.Option("rft,drft", "--models", help="Terrain models, comma separated."),
-    omega: str | None = typer.Option(None, "--omega", help="Spin rates [rad/s]: list or a:b:n."),
+    model: str = typer.Option("rft,drft", "--model", help="Terrain models, comma separated (rft, drft)."),
+    omega: str | None = typer.Option(None, "--omega", help="Spin rates [rad/s]: list or start:stop:count."),
     gravity: float = typer.Option(9.81, "--gravity", help="Gravity [m/s^2]."),
     initial_velocity: float = typer.Option(0.0, "--initial-velocity", help="Initial speed [m/s]."),
     ramp: float | None = typer.Option(None, "--ramp", help="Spin ramp rate [rad/s^2]."),
     slip_margin: float = typer.Option(0.05, "--slip-margin", help="Slip rise that defines the onset."),
-    reduced: bool = typer.Option(False, "--reduced", help="Fewer spin rates (quick look)."),
-    out: Path | None = typer.Option(None, "--out", help="Folder for the table and plot."),
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
+    quick: bool = QUICK,
+    out: str | None = typer.Option(None, "--out", help=OUT_FOLDER_HELP),
+    fmt: OutputFormat = FORMAT,
 ) -> None:
     """Grousered wheel on poppy seeds over spin rates: the onset of the sharp rise in slip (ch. 8)."""
+    from ..io import current_output_set
     from ..studies.high_speed import high_speed_sweep
     from ._common import parse_float_list
 
-    if out is not None and out.exists() and not out.is_dir():
-        raise InputError("--out", str(out), "a folder path")
-    names = [m.strip() for m in models.split(",") if m.strip()]
+    folder = out_folder("--out", out)
+    names = [m.strip() for m in model.split(",") if m.strip()]
     omegas = parse_float_list("--omega", omega) if omega else None
-    res = high_speed_sweep(
-        material=material,
-        models=names,
-        omegas=omegas,
-        gravity=gravity,
-        initial_velocity=initial_velocity,
-        ramp=ramp,
-        slip_margin=slip_margin,
-        reduced=reduced,
-    )
-    if out is not None:
-        out.mkdir(parents=True, exist_ok=True)
-        atomic_write_text(out / "high_speed.csv", res.table.to_dataframe().to_csv(index=False))
-        save_figure(_plot_high_speed(res), out / "high_speed.png")
+    with fraction_progress("high-speed sweep", "points") as update:
+        res = high_speed_sweep(
+            material=material,
+            models=names,
+            omegas=omegas,
+            gravity=gravity,
+            initial_velocity=initial_velocity,
+            ramp=ramp,
+            slip_margin=slip_margin,
+            reduced=quick,
+            progress=lambda done, total: update(done, done / total),
+        )
+    if folder is not None:
+        outs = current_output_set()
+        if outs is not None:
+            outs.folder(folder)
+        else:
+            folder.mkdir(parents=True, exist_ok=True)
+        atomic_write_text(folder / "high_speed.csv", res.table.to_dataframe().to_csv(index=False))
+        save_figure(_plot_high_speed(res), folder / "high_speed.png")
     onset = res.onset
     rec = {
         "omega_onset_rad_s": onset.get("omega_onset_rad_s"),

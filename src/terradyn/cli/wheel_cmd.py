@@ -15,13 +15,30 @@ from ..geometry import Body
 from ..locomotion.models import MODEL_NAMES
 from ..materials import Material
 from ._bodies import BodyKind, BodyOptions, build_body
-from ._common import OutputFormat, emit, finalize_temp, parse_float_list, progress, save_figure
+from ._common import OutputFormat, atomic_write, emit, parse_float_list, progress, save_figure, spinner
+from .options import (
+    ANIMATE,
+    DRAWBAR_LOAD,
+    ELEMENT_SIZE,
+    FORMAT,
+    GRAVITY,
+    LOAD,
+    MATERIAL,
+    OMEGA,
+    OUT,
+    PHASES,
+    PLOT,
+    WHEEL_RADIUS,
+    WHEEL_WIDTH,
+    animation_file,
+    input_file,
+    out_file,
+    plot_file,
+)
 
-app = typer.Typer(help="Wheel locomotion: steady solves, sweeps, free rolling.", no_args_is_help=True)
-
-
-def register(root: typer.Typer) -> None:
-    root.add_typer(app, name="wheel")
+app = typer.Typer(
+    help="Wheel locomotion: steady solves, sweeps, free rolling.", no_args_is_help=True, rich_markup_mode=None
+)
 
 
 class WheelShape(str, Enum):
@@ -112,14 +129,14 @@ def _plot_steady(body: Body, mat: Material, res: Any, path: Path, element_size: 
 
 @app.command("steady")
 def steady(
-    material: str = typer.Option("MS", "--material", help="Medium name or TOML file."),
-    load: float = typer.Option(..., "--load", help="Vertical load W [N]."),
+    material: str = MATERIAL,
+    load: float = LOAD,
     slip: float = typer.Option(..., "--slip", help="Slip s = 1 - V/(omega r), in [-1, 1]."),
-    omega: float = typer.Option(1.0, "--omega", help="Spin rate [rad/s]."),
-    model: str = typer.Option("rft", "--model", help="Terrain model: rft or wong-reece."),
+    omega: float = OMEGA,
+    model: str = typer.Option("rft", "--model", help="Terrain model: rft, drft, wong-reece or rft3d."),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
-    radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
-    width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
+    radius: float | None = WHEEL_RADIUS,
+    width: float = WHEEL_WIDTH,
     thickness: float | None = BodyOptions.thickness,
     grouser_count: int | None = BodyOptions.grouser_count,
     grouser_height: float | None = BodyOptions.grouser_height,
@@ -128,48 +145,61 @@ def steady(
     flap_count: int | None = BodyOptions.flap_count,
     flap_length: float | None = BodyOptions.flap_length,
     flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: Path | None = BodyOptions.points_file,
-    phases: int = typer.Option(16, "--phases", help="Wheel angles per period (non-circular)."),
-    element_size: float | None = typer.Option(None, "--element-size", help="Element size [m]."),
+    points_file: str | None = BodyOptions.points_file,
+    phases: int = PHASES,
+    element_size: float | None = ELEMENT_SIZE,
     c1: float = WongReeceOptions.c1,
     c2: float = WongReeceOptions.c2,
     exit_angle: float = WongReeceOptions.exit_angle,
-    mesh: Path | None = typer.Option(None, "--mesh", help="Wheel mesh (STL/OBJ/PLY) for --model rft3d."),
+    mesh: str | None = typer.Option(None, "--mesh", help="Wheel mesh (STL/OBJ/PLY) for --model rft3d."),
     slip_angle: float = typer.Option(0.0, "--slip-angle", help="Slip angle [deg] for --model rft3d."),
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
-    plot: Path | None = typer.Option(None, "--plot", help="Wheel with traction arrows (RFT)."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = typer.Option(
+        None, "--plot", help="Wheel with RFT traction arrows (.png/.pdf/.svg/.jpg)."
+    ),
 ) -> None:
     """Sinkage, drawbar pull, drive torque and power of a wheel at a load and slip."""
     from ..locomotion import wheel_steady
 
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    flags = _shape_flags(shape, locals())
     if model.strip().lower() == "rft3d":
-        _steady_3d(locals())
+        if plot_path is not None:
+            raise InputError("--plot", plot, "a plane model (--model rft)")
+        mesh_path = input_file("--mesh", mesh)
+        angle = check_finite("--slip-angle", slip_angle)
+        if not abs(angle) < 90.0:
+            raise InputError("--slip-angle", slip_angle, "an angle in (-90, 90) [deg]")
+        with spinner("3D steady solve"):
+            rec = _steady_3d(shape, flags, width, mesh_path, material, load, slip, angle, omega, phases)
+        emit(rec, fmt, out_path)
         return
     if mesh is not None or slip_angle != 0.0:
-        raise InputError("--mesh/--slip-angle", str(mesh or slip_angle), "only with --model rft3d")
-
-    body = wheel_body(shape, width, _shape_flags(shape, locals()))
+        raise InputError(
+            "--mesh" if mesh is not None else "--slip-angle", mesh or slip_angle, "only with --model rft3d"
+        )
+    body = wheel_body(shape, width, flags)
     mat = materials.get(material)
     factory = model_factory(model, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
-    if plot is not None and factory.name != "rft":
-        raise InputError("--plot", str(plot), "only with --model rft (traction arrows of RFT elements)")
+    if plot_path is not None and factory.name != "rft":
+        raise InputError("--plot", plot, "only with --model rft (traction arrows of RFT elements)")
     res = wheel_steady(body, factory(mat), load, slip, omega=omega, phase_count=phases)
-    if plot is not None:
-        _plot_steady(body, mat, res, plot, element_size)
-    emit(_steady_record(res), fmt, out)
+    if plot_path is not None:
+        _plot_steady(body, mat, res, plot_path, element_size)
+    emit(_steady_record(res), fmt, out_path)
 
 
 @app.command("self-propelled")
 def self_propelled(
-    material: str = typer.Option("MS", "--material", help="Medium name or TOML file."),
-    load: float = typer.Option(..., "--load", help="Vertical load W [N]."),
-    drawbar_load: float = typer.Option(0.0, "--drawbar-load", help="Rearward load to pull [N]."),
-    omega: float = typer.Option(1.0, "--omega", help="Spin rate [rad/s]."),
-    model: str = typer.Option("rft", "--model", help="Terrain model: rft or wong-reece."),
+    material: str = MATERIAL,
+    load: float = LOAD,
+    drawbar_load: float = DRAWBAR_LOAD,
+    omega: float = OMEGA,
+    model: str = typer.Option("rft", "--model", help="Terrain model: rft, drft, wong-reece or rft3d."),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
-    radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
-    width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
+    radius: float | None = WHEEL_RADIUS,
+    width: float = WHEEL_WIDTH,
     thickness: float | None = BodyOptions.thickness,
     grouser_count: int | None = BodyOptions.grouser_count,
     grouser_height: float | None = BodyOptions.grouser_height,
@@ -178,18 +208,19 @@ def self_propelled(
     flap_count: int | None = BodyOptions.flap_count,
     flap_length: float | None = BodyOptions.flap_length,
     flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: Path | None = BodyOptions.points_file,
-    phases: int = typer.Option(16, "--phases", help="Wheel angles per period (non-circular)."),
-    element_size: float | None = typer.Option(None, "--element-size", help="Element size [m]."),
+    points_file: str | None = BodyOptions.points_file,
+    phases: int = PHASES,
+    element_size: float | None = ELEMENT_SIZE,
     c1: float = WongReeceOptions.c1,
     c2: float = WongReeceOptions.c2,
     exit_angle: float = WongReeceOptions.exit_angle,
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
 ) -> None:
     """Slip and sinkage at which the wheel's pull balances a drawbar load (0: free rolling)."""
     from ..locomotion import wheel_self_propelled
 
+    out_path = out_file("--out", out)
     body = wheel_body(shape, width, _shape_flags(shape, locals()))
     factory = model_factory(model, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
     res = wheel_self_propelled(
@@ -200,19 +231,19 @@ def self_propelled(
         omega=omega,
         phase_count=phases,
     )
-    emit(_steady_record(res), fmt, out)
+    emit(_steady_record(res), fmt, out_path)
 
 
 @app.command("sweep")
 def sweep(
-    material: str = typer.Option("MS", "--material", help="Media, comma separated."),
-    load: str = typer.Option("80,130,150,190", "--load", help="Loads [N]: list or a:b:n."),
-    slip: str = typer.Option("-0.7:0.7:15", "--slip", help="Slips: list or a:b:n."),
+    material: str = typer.Option("MS", "--material", help="Media (names or TOML files), comma separated."),
+    load: str = typer.Option("80,130,150,190", "--load", help="Loads [N]: a comma list or start:stop:count."),
+    slip: str = typer.Option("-0.7:0.7:15", "--slip", help="Slips [-]: a comma list or start:stop:count."),
     model: str = typer.Option("rft,wong-reece", "--model", help="Models, comma separated."),
-    omega: float = typer.Option(1.0, "--omega", help="Spin rate [rad/s]."),
+    omega: float = OMEGA,
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
-    radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
-    width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
+    radius: float | None = WHEEL_RADIUS,
+    width: float = WHEEL_WIDTH,
     thickness: float | None = BodyOptions.thickness,
     grouser_count: int | None = BodyOptions.grouser_count,
     grouser_height: float | None = BodyOptions.grouser_height,
@@ -221,9 +252,9 @@ def sweep(
     flap_count: int | None = BodyOptions.flap_count,
     flap_length: float | None = BodyOptions.flap_length,
     flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: Path | None = BodyOptions.points_file,
-    phases: int = typer.Option(16, "--phases", help="Wheel angles per period (non-circular)."),
-    element_size: float | None = typer.Option(None, "--element-size", help="Element size [m]."),
+    points_file: str | None = BodyOptions.points_file,
+    phases: int = PHASES,
+    element_size: float | None = ELEMENT_SIZE,
     c1: float = WongReeceOptions.c1,
     c2: float = WongReeceOptions.c2,
     exit_angle: float = WongReeceOptions.exit_angle,
@@ -231,13 +262,16 @@ def sweep(
         "serial", "--scheduler", help="serial, local (Dask processes) or a Dask scheduler address."
     ),
     workers: int | None = typer.Option(None, "--workers", help="Local Dask worker processes."),
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Output format."),
-    out: Path | None = typer.Option(None, "--out", help="Also write the output to this file."),
-    plot: Path | None = typer.Option(None, "--plot", help="Force-slip curves (PNG/PDF)."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = PLOT,
 ) -> None:
     """Force-slip and sinkage-slip curves over media x models x loads x slips."""
     from ..locomotion import force_slip_sweep
 
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    if workers is not None and not 1 <= workers <= 256:
+        raise InputError("--workers", workers, "an integer in [1, 256]")
     body = wheel_body(shape, width, _shape_flags(shape, locals()))
     media = [materials.get(m) for m in material.split(",") if m.strip()]
     if not media:
@@ -264,12 +298,13 @@ def sweep(
             scheduler=scheduler,
             workers=workers,
         )
-    if plot is not None:
-        plot_sweep(table.columns, [m.name for m in media], plot)
+    if plot_path is not None:
+        plot_sweep(table.columns, [m.name for m in media], plot_path)
     failures = table.metadata["failures"]
     if failures:
-        typer.echo(f"terradyn: {len(failures)} point(s) not solved, e.g. {failures[0]}", err=True)
-    emit(table.records(), fmt, out, title="wheel sweep")
+        first = " ".join(str(failures[0]).split())
+        typer.echo(f"terradyn: {len(failures)} point(s) not solved, e.g. {first}", err=True)
+    emit(table.records(), fmt, out_path, title="wheel sweep")
 
 
 def plot_sweep(columns: dict[str, Any], media: list[str], path: Path) -> None:
@@ -303,7 +338,7 @@ def _shape_flags(shape: WheelShape, values: dict[str, Any]) -> dict[str, Any]:
 
 @app.command("simulate")
 def simulate(
-    material: str = typer.Option("CPS", "--material", help="Medium name or TOML file."),
+    material: str = MATERIAL,
     mass: float = typer.Option(..., "--mass", help="Wheel (and carriage) mass [kg]."),
     omega: float | None = typer.Option(None, "--omega", help="Prescribed spin [rad/s] (target of a ramp)."),
     ramp: float | None = typer.Option(None, "--ramp", help="Spin ramp rate [rad/s^2]."),
@@ -312,12 +347,12 @@ def simulate(
     duration: float = typer.Option(..., "--duration", help="Simulated time [s]."),
     dt: float | None = typer.Option(None, "--dt", help="Time step [s] (default: stable step)."),
     inertia: float | None = typer.Option(None, "--inertia", help="Moment of inertia [kg m^2]."),
-    drawbar_load: float = typer.Option(0.0, "--drawbar-load", help="Rearward load [N]."),
-    gravity: float = typer.Option(9.81, "--gravity", help="Gravity [m/s^2]."),
-    model: str = typer.Option("rft", "--model", help="rft or drft."),
+    drawbar_load: float = DRAWBAR_LOAD,
+    gravity: float = GRAVITY,
+    model: str = typer.Option("rft", "--model", help="Terrain model: rft or drft."),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
-    radius: float | None = typer.Option(0.13, "--radius", help="Radius [m] (rim for grousered)."),
-    width: float = typer.Option(0.16, "--width", help="Wheel width [m]."),
+    radius: float | None = WHEEL_RADIUS,
+    width: float = WHEEL_WIDTH,
     thickness: float | None = BodyOptions.thickness,
     grouser_count: int | None = BodyOptions.grouser_count,
     grouser_height: float | None = BodyOptions.grouser_height,
@@ -326,108 +361,113 @@ def simulate(
     flap_count: int | None = BodyOptions.flap_count,
     flap_length: float | None = BodyOptions.flap_length,
     flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: Path | None = BodyOptions.points_file,
+    points_file: str | None = BodyOptions.points_file,
     output_every: int = typer.Option(10, "--output-every", help="Store every N-th step."),
-    fmt: OutputFormat = typer.Option(OutputFormat.table, "--format", help="Summary format."),
-    out: Path | None = typer.Option(None, "--out", help="Time series file (.csv, .json or .nc)."),
-    plot: Path | None = typer.Option(None, "--plot", help="Time-series plot (PNG/PDF)."),
-    animate: Path | None = typer.Option(None, "--animate", help="Animation (.gif or .mp4)."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = typer.Option(None, "--out", help="Time series file (.csv, .json or .nc)."),
+    plot: str | None = PLOT,
+    animate: str | None = ANIMATE,
 ) -> None:
     """Free wheel driven by a spin or torque: time series and the steady state over the last revolutions."""
     from ..locomotion.dynamics import simulate_wheel
 
+    out_path = out_file("--out", out, (".csv", ".json", ".nc"))
+    plot_path = plot_file("--plot", plot)
+    animate_path = animation_file("--animate", animate)
     if model not in ("rft", "drft"):
         raise InputError("--model", model, "'rft' or 'drft'")
-    if out is not None and out.suffix not in (".csv", ".json", ".nc"):
-        raise InputError("--out", str(out), "a file ending in .csv, .json or .nc")
+    if out_path is not None and out_path.suffix == ".nc":
+        _require("xarray", "--out", out, "the fields extra for .nc output (pip install 'terradyn[fields]')")
     body = wheel_body(shape, width, _shape_flags(shape, locals()))
     mat = materials.get(material)
-    res = simulate_wheel(
-        body,
-        mat,
-        model=model,
-        mass=mass,
-        inertia=inertia,
-        omega=omega,
-        ramp=ramp,
-        torque=torque,
-        duration=duration,
-        dt=dt,
-        initial_velocity=initial_velocity,
-        drawbar_load=drawbar_load,
-        gravity=gravity,
-        output_every=output_every,
-    )
+    with spinner("simulating"):
+        res = simulate_wheel(
+            body,
+            mat,
+            model=model,
+            mass=mass,
+            inertia=inertia,
+            omega=omega,
+            ramp=ramp,
+            torque=torque,
+            duration=duration,
+            dt=dt,
+            initial_velocity=initial_velocity,
+            drawbar_load=drawbar_load,
+            gravity=gravity,
+            output_every=output_every,
+        )
     summary = res.steady_summary()
-    if out is not None:
-        _atomic_save(res, out)
-    if plot is not None:
+    if out_path is not None:
+        atomic_write(out_path, res.save, suffix=out_path.suffix, field_name="--out")
+    if plot_path is not None:
         from ..plotting.animation import plot_time_series
 
         axes = plot_time_series(res)
-        save_figure(axes.ravel()[0].figure, plot)
-    if animate is not None:
+        save_figure(axes.ravel()[0].figure, plot_path)
+    if animate_path is not None:
         from ..plotting.animation import animate_body
 
-        animate_body(body, mat, res, animate)
+        with spinner("rendering the animation"):
+            animate_body(body, mat, res, animate_path)
     emit(summary, fmt, None)
 
 
-def _atomic_save(res: Any, path: Path) -> None:
-    import os
-    import tempfile
+def _require(module: str, flag: str, value: Any, what: str) -> None:
+    import importlib.util
 
-    if path.parent and not path.parent.exists():
-        raise InputError("--out", str(path), "a path in an existing folder")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent or Path("."))
-    os.close(fd)
-    try:
-        res.save(tmp)
-        finalize_temp(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    if importlib.util.find_spec(module) is None:
+        raise InputError(flag, value, what)
 
 
-def _steady_3d(v: dict[str, Any]) -> None:
+def _steady_3d(
+    shape: WheelShape,
+    flags: dict[str, Any],
+    width: float,
+    mesh: Path | None,
+    material: str,
+    load: float,
+    slip: float,
+    slip_angle_deg: float,
+    omega: float,
+    phases: int,
+) -> dict[str, Any]:
     """``wheel steady --model rft3d``: 3D RFT on a mesh or a primitive wheel, with a slip angle."""
     from ..geometry3d import load_mesh, wheel_cylinder, wheel_grousered
     from ..locomotion.steady3d import steady3d_record, wheel_steady_3d
 
-    if v["plot"] is not None:
-        raise InputError("--plot", str(v["plot"]), "a plane model (--model rft)")
-    shape, radius, width = v["shape"], v["radius"], v["width"]
-    phases = 1
-    if v["mesh"] is not None:
-        wheel = load_mesh(v["mesh"])
-        phases = v["phases"]
+    radius = flags.get("radius")
+    phase_count = 1
+    if mesh is not None:
+        wheel = load_mesh(mesh)
+        phase_count = phases
     elif shape is WheelShape.circular:
         if radius is None:
             raise InputError("--radius", None, "a radius [m] (or --mesh)")
         wheel = wheel_cylinder(radius, width, circumferential_resolution=360, axial_resolution=2)
     elif shape is WheelShape.grousered:
         for flag in ("grouser_count", "grouser_height", "grouser_thickness"):
-            if v[flag] is None:
+            if flags.get(flag) is None:
                 raise InputError(f"--{flag.replace('_', '-')}", None, "a value (required for grousered)")
         wheel = wheel_grousered(
             radius,
             width,
-            grouser_count=v["grouser_count"],
-            grouser_height=v["grouser_height"],
-            grouser_thickness=v["grouser_thickness"],
+            grouser_count=flags["grouser_count"],
+            grouser_height=flags["grouser_height"],
+            grouser_thickness=flags["grouser_thickness"],
             circumferential_resolution=360,
             axial_resolution=2,
         )
-        phases = v["phases"]
+        phase_count = phases
     else:
         raise InputError("--shape", shape.value, "circular or grousered for rft3d (or --mesh FILE)")
     res = wheel_steady_3d(
         wheel,
-        materials.get(v["material"]),
-        v["load"],
-        v["slip"],
-        slip_angle=math.radians(check_finite("--slip-angle", v["slip_angle"])),
-        omega=v["omega"],
-        phase_count=phases,
+        materials.get(material),
+        load,
+        slip,
+        slip_angle=math.radians(slip_angle_deg),
+        omega=omega,
+        phase_count=phase_count,
     )
-    emit(steady3d_record(res), v["fmt"], v["out"])
+    return steady3d_record(res)

@@ -180,7 +180,7 @@ def write_rft_material_toml(
     path: str | Path, name: str, fit: RFTFit, *, source: str = "", base: Material | None = None
 ) -> Path:
     """Write a material TOML with the fitted RFT parameters (atomically) and return its path."""
-    from ..cli._common import atomic_write_text
+    from ..io import atomic_write_text
 
     if not name.strip():
         raise InputError("name", name, "a non-empty material name")

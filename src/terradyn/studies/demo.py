@@ -6,27 +6,44 @@ The headline result of the thesis as one command: the 0.26 m x 0.16 m rigid whee
 
 from __future__ import annotations
 
-import sys
 import time
 from pathlib import Path
-
-from ..errors import InputError
+from typing import Any
 
 __all__ = ["run_demo"]
 
 
 def run_demo(out: Path) -> list[Path]:
     """Run the wheel force-slip study; write CSV and PNG files to ``out``; print a summary."""
-    from ..cli._common import OutputFormat, atomic_write_text, format_output, save_figure
+    from ..io import (
+        OutputFormat,
+        atomic_write_text,
+        check_output_folder,
+        format_output,
+        output_set,
+        save_figure,
+    )
     from .registry import run_study
 
-    out = Path(out)
-    if out.exists() and not out.is_dir():
-        raise InputError("--out", str(out), "a folder path")
+    out = check_output_folder("out", out)
     t0 = time.perf_counter()
     _, result = run_study("wheel-force-slip")
     elapsed = time.perf_counter() - t0
-    out.mkdir(parents=True, exist_ok=True)
+    with output_set() as outs:
+        outs.folder(out)
+        files = _write(result, out, atomic_write_text, save_figure)
+        outs.print(
+            format_output(
+                result.summary,
+                OutputFormat.table,
+                title="terradyn demo: rigid wheel, RFT vs Wong-Reece (slip 0.3)",
+            )
+        )
+        outs.print(f"computed in {elapsed:.2f} s; wrote {', '.join(str(f) for f in files)}\n")
+    return files
+
+
+def _write(result: Any, out: Path, atomic_write_text: Any, save_figure: Any) -> list[Path]:
     files = []
     for name, table in result.tables.items():
         files.append(atomic_write_text(out / f"{name}.csv", table.to_dataframe().to_csv(index=False)))
@@ -36,19 +53,11 @@ def run_demo(out: Path) -> list[Path]:
     files.append(atomic_write_text(out / "summary.csv", _summary_csv(result.summary)))
     for name, fig in result.figures.items():
         files.append(save_figure(fig, out / f"{name}.png"))
-    sys.stdout.write(
-        format_output(
-            result.summary,
-            OutputFormat.table,
-            title="terradyn demo: rigid wheel, RFT vs Wong-Reece (slip 0.3)",
-        )
-    )
-    sys.stdout.write(f"computed in {elapsed:.2f} s; wrote {', '.join(str(f) for f in files)}\n")
     return files
 
 
 def _summary_csv(rows: list[dict[str, object]]) -> str:
-    from ..cli._common import OutputFormat, format_output
+    from ..io import OutputFormat, format_output
 
     keys: list[str] = []
     for r in rows:

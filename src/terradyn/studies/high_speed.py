@@ -34,7 +34,7 @@ MIT (2019), ch. 8.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -223,6 +223,7 @@ def high_speed_sweep(
     average_revolutions: float = 2.0,
     slip_margin: float = 0.05,
     reduced: bool = False,
+    progress: Callable[[int, int], None] | None = None,
 ) -> HighSpeedResult:
     """Steady speed, slip and sinkage of the study wheel over a sweep of spin rates, and the slip onset.
 
@@ -279,9 +280,13 @@ def high_speed_sweep(
         "model", "omega_rad_s", "omega_normalised", "forward_velocity_m_s", "velocity_normalised", "slip",
         "sinkage_m", "sinkage_normalised", "drive_torque_Nm", "froude")}
     onsets: dict[str, dict[str, Any]] = {}
+    done, total = 0, len(names) * len(w)
     for name in names:
         slips, sinks = [], []
         for omega in w:
+            if progress is not None:
+                progress(done, total)
+            done += 1
             s = _steady_run(wheel, mat, name, float(omega), gravity=g, initial_velocity=initial_velocity,
                             ramp=ramp, settle_revolutions=settle_revolutions,
                             average_revolutions=average_revolutions)
