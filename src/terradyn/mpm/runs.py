@@ -188,7 +188,9 @@ def _execute(runner: Runner, resume: bool, eff: Body) -> float:
     if isinstance(runner.fingerprint, dict):
         runner.fingerprint = plain({**runner.fingerprint, "derived": _derived_inputs(runner, eff)})
     if path is not None and path.is_dir():
-        raise InputError("checkpoint_path", str(path), "a file path, not a directory")
+        raise InputError(
+            "checkpoint_path", str(path), "a file path, not a directory", "give a file such as run.npz"
+        )
     if resume:
         if path is None:
             raise InputError("resume", True, "resume together with checkpoint_path", "give the file")

@@ -484,9 +484,9 @@ class Runner:
         ``checkpoint_path`` is set; further interrupts wait until the file is written) and
         :class:`RunInterrupted` is raised.
         """
-        self.prepare()
         self._last_checkpoint = time.monotonic()
         try:
+            self.prepare()
             self._run_phases()
         except RunInterrupted:
             raise
