@@ -5,6 +5,11 @@ midpoints [m] and outward unit normals [-]; ``lengths`` (N,) [m]; ``coeffs`` (9,
 the order A00, A10, B01, B11, Bm11, C01, C11, Cm11, D10 [-]; ``scale`` [N/m^3]. Poses are
 (x [m], z [m], theta [rad] about +y), twists (vx [m/s], vz [m/s], omega [rad/s] about +y). The NumPy
 reference is :func:`terradyn.rft.forces.rft_element_forces`.
+
+Leading-edge rule: an element below the surface carries the share
+``clip(1/2 + n . v / (2 |v| LEADING_BAND), 0, 1)`` of its load (:data:`terradyn.rft.li2013.LEADING_BAND`
+= 1e-3: the sharp rule n . v > 0 outside a band of 0.057 deg about faces parallel to their motion, which
+carry half), so the force is continuous in the direction of motion.
 """
 
 from __future__ import annotations
@@ -14,9 +19,13 @@ import math
 import numba as nb
 import numpy as np
 
-from .li2013 import MIN_SPEED
+from .li2013 import LEADING_BAND, MIN_SPEED
 
 __all__ = ["rft_wrench_kernel", "rft_wrench_many_kernel", "rft_wrench_phases_kernel"]
+
+_HALF_INV_BAND = 0.5 / LEADING_BAND
+# n . v <= _SKIP * max(|v_x|, |v_z|) implies n . v / |v| < -LEADING_BAND (share 0), as |v| <= sqrt(2) max.
+_SKIP = -1.5 * LEADING_BAND
 
 
 @nb.njit(cache=True, fastmath=True, nogil=True, inline="always")
@@ -63,7 +72,8 @@ def rft_wrench_kernel(
     """Soil wrench (F_x [N], F_z [N], torque about +y [N m] about (about_x, about_z)) on a body.
 
     Only elements below ``surface`` [m] whose outward normal has a positive component along their
-    velocity (leading elements) carry the traction ``scale * (-alpha_x, alpha_z) * depth``.
+    velocity (leading elements) carry the traction ``share * scale * (-alpha_x, alpha_z) * depth``,
+    ``share = clip(1/2 + n . v / (2 |v| LEADING_BAND), 0, 1)`` (module notes).
     """
     c = math.cos(theta)
     s = math.sin(theta)
@@ -82,14 +92,17 @@ def rft_wrench_kernel(
         nz = -s * nrm[i, 0] + c * nrm[i, 1]
         # Speeds below MIN_SPEED count as rest (the direction of motion is undefined there).
         big = max(abs(ex), abs(ez))
-        if big < MIN_SPEED or nx * ex + nz * ez <= 0.0:
+        if big < MIN_SPEED or nx * ex + nz * ez <= _SKIP * big:  # trailing beyond the band
             continue
         ux, uz = ex / big, ez / big
         inv = 1.0 / math.sqrt(ux * ux + uz * uz)
         cg = ux * inv
         sg = -uz * inv
+        share = min(1.0, 0.5 + (nx * cg - nz * sg) * _HALF_INV_BAND)
+        if share <= 0.0:
+            continue
         ax, az = li2013_alpha_unit(coeffs, nx, nz, cg, sg)
-        w = scale * depth * lengths[i] * width
+        w = scale * depth * lengths[i] * width * share
         f_x = -ax * w
         f_z = az * w
         fx += f_x
@@ -233,8 +246,14 @@ def rft_contact_angles_kernel(
             continue
         nx = c * nrm[i, 0] + s * nrm[i, 1]
         nz = -s * nrm[i, 0] + c * nrm[i, 1]
-        if nx * (vx + omega * rz) + nz * (vz - omega * rx) <= 0.0:
+        ex = vx + omega * rz
+        ez = vz - omega * rx
+        big = max(abs(ex), abs(ez))
+        if big < MIN_SPEED:
             continue
+        ux, uz = ex / big, ez / big
+        if (nx * ux + nz * uz) <= -LEADING_BAND * math.sqrt(ux * ux + uz * uz):
+            continue  # leading-edge share 0
         a = math.atan2(rx, -rz)
         hi = max(hi, a)
         lo = min(lo, a)

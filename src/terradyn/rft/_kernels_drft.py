@@ -14,7 +14,8 @@ DRFT traction on a leading element (n . v > 0) below its effective free surface:
 correction: elements in the rear half of the loaded contact arc (seen from the body origin, split at
 the mid-angle of the arc) see the free surface lowered by ``drop``. The loaded arc is that of plain RFT
 (leading elements below the undisturbed ``surface``). With ``lam_rho = 0`` and ``drop = 0`` the kernel
-performs exactly the arithmetic of :func:`terradyn.rft._kernels.rft_wrench_kernel`.
+performs the arithmetic of :func:`terradyn.rft._kernels.rft_wrench_kernel`, leading-edge share
+included (:data:`terradyn.rft.li2013.LEADING_BAND`).
 
 The NumPy reference is :func:`terradyn.rft.drft.drft_element_forces`.
 
@@ -31,7 +32,7 @@ import math
 import numba as nb
 import numpy as np
 
-from ._kernels import li2013_alpha_unit
+from ._kernels import _HALF_INV_BAND, _SKIP, li2013_alpha_unit
 from .li2013 import MIN_SPEED
 
 __all__ = [
@@ -61,10 +62,19 @@ def pseudo_angle(a: float, b: float) -> float:
 
 
 @nb.njit(cache=True, fastmath=True, nogil=True, inline="always")
-def _leading_fraction(vn, ex, ez, band):
-    """Share [0, 1] of an element's force under the (smoothed) leading-edge rule."""
+def _leading_fraction(nx, nz, vn, ex, ez, band):
+    """Share [0, 1] of an element's force under the leading-edge rule (``band`` 0) or its odd smoothing.
+
+    ``band`` 0: the rule of plane RFT, ``clip(1/2 + n . v / (2 |v| LEADING_BAND), 0, 1)``, with the
+    arithmetic of :func:`terradyn.rft._kernels.rft_wrench_kernel`.
+    """
     if band <= 0.0:
-        return 1.0 if vn > 0.0 else 0.0
+        big = max(abs(ex), abs(ez))
+        if big < MIN_SPEED or vn <= _SKIP * big:
+            return 0.0
+        ux, uz = ex / big, ez / big
+        inv = 1.0 / math.sqrt(ux * ux + uz * uz)
+        return min(1.0, max(0.0, 0.5 + (nx * (ux * inv) - nz * (-uz * inv)) * _HALF_INV_BAND))
     edge2 = band * band * (ex * ex + ez * ez)
     if vn * vn >= edge2:
         return 1.0 if vn > 0.0 else 0.0
@@ -118,11 +128,12 @@ def drft_wrench_kernel(
 
     ``lam_rho`` [kg/m^3] scales the inertial term; ``drop`` [m] >= 0 lowers the free surface for the
     rear half of the loaded contact arc (0: no structural correction). ``band`` [-] >= 0 smooths the
-    model for implicit time stepping (0: the sharp rules, exactly):
+    model for implicit time stepping (0: the rules of quasi-static RFT, exactly):
 
-    * leading edge: an element with ``n . v / |v|`` in [-band, band] carries the fraction
-      ``1/2 + n . v / (2 band |v|)`` of its force (odd about the switch: sums over many elements change
-      at second order in ``band``);
+    * leading edge: with ``band`` 0 the rule of :func:`terradyn.rft._kernels.rft_wrench_kernel`
+      (share ``clip(1/2 + n . v / (2 |v| LEADING_BAND), 0, 1)``); otherwise an element with
+      ``n . v / |v|`` in [-band, band] carries the fraction ``1/2 + n . v / (2 band |v|)`` of its force
+      (odd about the switch: sums over many elements change at second order in ``band``);
     * structural correction: each loaded element extends the contact arc by its angular size
       ``l / |r|`` times ``min(1, depth / (l |n_x|))`` (its share of its own vertical extent), so the
       arc ends move continuously as elements enter, and elements within half their angular size of
@@ -131,13 +142,47 @@ def drft_wrench_kernel(
     if drop > 0.0 and band > 0.0:
         ang, size = body_angles_kernel(mid, lengths)
         return drft_wrench_smooth_kernel(
-            mid, nrm, lengths, ang, size, width, x, z, theta, vx, vz, omega, coeffs, scale, surface,
-            about_x, about_z, lam_rho, drop, band,
+            mid,
+            nrm,
+            lengths,
+            ang,
+            size,
+            width,
+            x,
+            z,
+            theta,
+            vx,
+            vz,
+            omega,
+            coeffs,
+            scale,
+            surface,
+            about_x,
+            about_z,
+            lam_rho,
+            drop,
+            band,
         )
     if drop > 0.0:
         return _drft_wrench_split(
-            mid, nrm, lengths, width, x, z, theta, vx, vz, omega, coeffs, scale, surface, about_x,
-            about_z, lam_rho, drop, band,
+            mid,
+            nrm,
+            lengths,
+            width,
+            x,
+            z,
+            theta,
+            vx,
+            vz,
+            omega,
+            coeffs,
+            scale,
+            surface,
+            about_x,
+            about_z,
+            lam_rho,
+            drop,
+            band,
         )
     c = math.cos(theta)
     s = math.sin(theta)
@@ -155,7 +200,7 @@ def drft_wrench_kernel(
         nx = c * nrm[i, 0] + s * nrm[i, 1]
         nz = -s * nrm[i, 0] + c * nrm[i, 1]
         vn = nx * ex + nz * ez
-        lead = _leading_fraction(vn, ex, ez, band)
+        lead = _leading_fraction(nx, nz, vn, ex, ez, band)
         if lead <= 0.0:
             continue
         f_x, f_z = _element_force(coeffs, nx, nz, ex, ez, vn, depth, lengths[i], width, scale, lam_rho)
@@ -170,8 +215,24 @@ def drft_wrench_kernel(
 
 @nb.njit(cache=True, fastmath=True, nogil=True)
 def _drft_wrench_split(
-    mid, nrm, lengths, width, x, z, theta, vx, vz, omega, coeffs, scale, surface, about_x, about_z,
-    lam_rho, drop, band,
+    mid,
+    nrm,
+    lengths,
+    width,
+    x,
+    z,
+    theta,
+    vx,
+    vz,
+    omega,
+    coeffs,
+    scale,
+    surface,
+    about_x,
+    about_z,
+    lam_rho,
+    drop,
+    band,
 ):
     """:func:`drft_wrench_kernel` with the structural correction (``drop`` > 0).
 
@@ -198,7 +259,7 @@ def _drft_wrench_split(
         nx = c * nrm[i, 0] + s * nrm[i, 1]
         nz = -s * nrm[i, 0] + c * nrm[i, 1]
         vn = nx * ex + nz * ez
-        if _leading_fraction(vn, ex, ez, band) <= 0.0:
+        if _leading_fraction(nx, nz, vn, ex, ez, band) <= 0.0:
             continue
         p = pseudo_angle(rx, -rz)
         if p < lo:
@@ -230,7 +291,7 @@ def _drft_wrench_split(
             if depth <= 0.0:
                 continue
         f_x, f_z = _element_force(coeffs, nx, nz, ex, ez, vn, depth, lengths[i], width, scale, lam_rho)
-        lead = _leading_fraction(vn, ex, ez, band)
+        lead = _leading_fraction(nx, nz, vn, ex, ez, band)
         if lead < 1.0:
             f_x *= lead
             f_z *= lead
@@ -302,7 +363,7 @@ def drft_wrench_smooth_kernel(
         ez = vz - omega * rx
         nx = c * nrm[i, 0] + s * nrm[i, 1]
         nz = -s * nrm[i, 0] + c * nrm[i, 1]
-        lead = _leading_fraction(nx * ex + nz * ez, ex, ez, band)
+        lead = _leading_fraction(nx, nz, nx * ex + nz * ez, ex, ez, band)
         if lead <= 0.0:
             continue
         phi = ang[i] - theta
@@ -339,7 +400,7 @@ def drft_wrench_smooth_kernel(
         if depth <= 0.0:
             continue
         f_x, f_z = _element_force(coeffs, nx, nz, ex, ez, vn, depth, lengths[i], width, scale, lam_rho)
-        lead = _leading_fraction(vn, ex, ez, band)
+        lead = _leading_fraction(nx, nz, vn, ex, ez, band)
         if lead < 1.0:
             f_x *= lead
             f_z *= lead

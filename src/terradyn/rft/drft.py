@@ -41,7 +41,7 @@ from ..kinematics import Pose2D, Twist2D, Wrench2D, rotation_matrix
 from ..materials import Material
 from ._kernels_drft import SPLIT_TIE
 from .forces import Backend, as_elements
-from .li2013 import MIN_SPEED, li2013_alpha_from_directions
+from .li2013 import MIN_SPEED, leading_share, li2013_alpha_from_directions
 
 __all__ = [
     "DRFTElementForces",
@@ -269,7 +269,7 @@ def drft_element_forces(
     leading_band : float
         Smoothing of the leading-edge switch used by the time integrator [-]: an element with
         ``n . v / |v|`` in [-band, band] carries ``1/2 + n . v / (2 band |v|)`` of its force. 0 (default)
-        is the sharp rule of RFT.
+        is the rule of quasi-static RFT (:func:`terradyn.rft.li2013.leading_share`).
     """
     m = _as_model(model)
     band = check_positive("leading_band", leading_band, allow_zero=True)
@@ -286,13 +286,16 @@ def drft_element_forces(
     )
     vn = np.einsum("ij,ij->i", normals, velocities)
     depth0 = surface - positions[:, 1]
-    share = _leading_share(vn, velocities, band)
+    share = _leading_share(normals, vn, velocities, band)
     share = np.where(np.max(np.abs(velocities), axis=1) >= MIN_SPEED, share, 0.0)
     leading = share > 0
     drop = m.structural_drop(body, twist.omega)
     loaded = (depth0 > 0) & leading
-    rear = _rear_share(offsets, normals, elems.lengths, depth0, share, loaded, band) if drop > 0 else \
-        np.zeros(len(vn))
+    rear = (
+        _rear_share(offsets, normals, elems.lengths, depth0, share, loaded, band)
+        if drop > 0
+        else np.zeros(len(vn))
+    )
     depth = depth0 - drop * rear
     active = (depth > 0) & leading
     ax, az = li2013_alpha_from_directions(normals, velocities, rft.coefficients.as_array(), rft.scale)
@@ -310,8 +313,19 @@ def drft_element_forces(
         float(np.sum(r[:, 1] * forces[:, 0] - r[:, 0] * forces[:, 1])),
     )
     return DRFTElementForces(
-        positions, normals, velocities, depth, rear > 0, active, quasi, inertial, forces, areas, drop,
-        wrench, point,
+        positions,
+        normals,
+        velocities,
+        depth,
+        rear > 0,
+        active,
+        quasi,
+        inertial,
+        forces,
+        areas,
+        drop,
+        wrench,
+        point,
     )
 
 
@@ -344,11 +358,12 @@ def _rear_share(
 
 
 def _leading_share(
-    vn: NDArray[np.float64], velocities: NDArray[np.float64], band: float
+    normals: NDArray[np.float64], vn: NDArray[np.float64], velocities: NDArray[np.float64], band: float
 ) -> NDArray[np.float64]:
-    """Share [0, 1] of each element's force under the (smoothed) leading-edge rule."""
+    """Share [0, 1] of each element's force under the leading-edge rule of RFT (``band`` 0:
+    :func:`terradyn.rft.li2013.leading_share`) or its odd smoothing for time stepping."""
     if band == 0:
-        return (vn > 0).astype(np.float64)
+        return leading_share(normals, velocities)
     edge = band * np.hypot(velocities[:, 0], velocities[:, 1])
     safe = np.where(edge > 0, edge, 1.0)
     return np.where(edge > 0, np.clip(0.5 + 0.5 * vn / safe, 0.0, 1.0), (vn > 0).astype(np.float64))
@@ -382,10 +397,23 @@ def drft_wrench(
     rft = m.material.require_rft()
     point = _about(pose, about)
     fx, fz, ty = drft_wrench_kernel(
-        elems.midpoints, elems.normals, elems.lengths, elems.width,
-        pose.x, pose.z, pose.theta, twist.vx, twist.vz, twist.omega,
-        rft.coefficients.as_array(), rft.scale, float(m.surface_level), point[0], point[1],
-        m.inertial_density, m.structural_drop(body, twist.omega),
+        elems.midpoints,
+        elems.normals,
+        elems.lengths,
+        elems.width,
+        pose.x,
+        pose.z,
+        pose.theta,
+        twist.vx,
+        twist.vz,
+        twist.omega,
+        rft.coefficients.as_array(),
+        rft.scale,
+        float(m.surface_level),
+        point[0],
+        point[1],
+        m.inertial_density,
+        m.structural_drop(body, twist.omega),
         check_positive("leading_band", leading_band, allow_zero=True),
     )
     if not (math.isfinite(fx) and math.isfinite(fz) and math.isfinite(ty)):

@@ -13,7 +13,7 @@ from ..errors import InputError, check_finite
 from ..geometry import Body, SurfaceElements
 from ..kinematics import Pose2D, Twist2D, Wrench2D, rotation_matrix
 from ..materials import Material, RFTParameters
-from .li2013 import MIN_SPEED, li2013_alpha_from_directions, rft_angles
+from .li2013 import leading_share, li2013_alpha_from_directions, rft_angles
 
 __all__ = [
     "Backend",
@@ -62,9 +62,12 @@ class RFTElementForces:
     ----------
     positions : world midpoints [m]; normals : world outward normals [-]; velocities [m/s];
     depth : depth below the surface [m] (<= 0 above it); beta, gamma : RFT angles [rad];
-    active : bool, element below the surface and leading (n . v > 0);
-    alpha_x, alpha_z : stress per depth [N/m^3] (0 where not active);
-    tractions : (N, 2) [Pa]; forces : (N, 2) [N]; areas : [m^2];
+    active : bool, element below the surface with a leading-edge share > 0;
+    share : leading-edge share [0, 1] of the load the element carries (:data:`LEADING_BAND`: 1 when
+    leading by more than 0.057 deg, 1/2 for a face moving along itself, linear in n . v / |v| between,
+    0 when trailing by more than 0.057 deg or not below the surface);
+    alpha_x, alpha_z : stress per depth of the law [N/m^3] (0 where not active);
+    tractions : (N, 2) [Pa], ``share * (-alpha_x, alpha_z) * depth``; forces : (N, 2) [N]; areas : [m^2];
     wrench : Wrench2D, the sum, with torque about ``about``.
     """
 
@@ -75,6 +78,7 @@ class RFTElementForces:
     beta: NDArray[np.float64]
     gamma: NDArray[np.float64]
     active: NDArray[np.bool_]
+    share: NDArray[np.float64]
     alpha_x: NDArray[np.float64]
     alpha_z: NDArray[np.float64]
     tractions: NDArray[np.float64]
@@ -99,6 +103,7 @@ class RFTElementForces:
                 "beta_rad": self.beta,
                 "gamma_rad": self.gamma,
                 "active": self.active,
+                "leading_share": self.share,
                 "alpha_x_N_per_m3": self.alpha_x,
                 "alpha_z_N_per_m3": self.alpha_z,
                 "force_x_N": self.forces[:, 0],
@@ -154,15 +159,15 @@ def rft_element_forces(
         (twist.vx + twist.omega * offsets[:, 1], twist.vz - twist.omega * offsets[:, 0])
     )
     depth = surface - positions[:, 1]
-    moving = np.max(np.abs(velocities), axis=1) >= MIN_SPEED
-    leading = (np.einsum("ij,ij->i", normals, velocities) > 0) & moving
-    active = (depth > 0) & leading
+    share = leading_share(normals, velocities)
+    active = (depth > 0) & (share > 0)
+    share = np.where(active, share, 0.0)
     beta, gamma = rft_angles(normals, velocities)
     ax, az = li2013_alpha_from_directions(normals, velocities, rft.coefficients.as_array(), rft.scale)
     ax = np.where(active, ax, 0.0)
     az = np.where(active, az, 0.0)
     d = np.where(active, depth, 0.0)
-    tractions = np.column_stack((-ax * d, az * d))
+    tractions = np.column_stack((-ax * d, az * d)) * share[:, None]
     areas = elems.areas
     forces = tractions * areas[:, None]
     r = positions - np.array(point)
@@ -179,6 +184,7 @@ def rft_element_forces(
         beta,
         gamma,
         active,
+        share,
         ax,
         az,
         tractions,

@@ -28,8 +28,20 @@ from ..materials import LiCoefficients, Material, RFTParameters
 #: Element speeds below this [m/s] count as rest: no direction of motion, no load.
 MIN_SPEED = 1e-200
 
+#: Half-width [-] of the leading-edge ramp in c = n . v / |v| (the cosine between the outward normal
+#: and the direction of motion): an element carries the share ``clip(1/2 + c / (2 LEADING_BAND), 0, 1)``
+#: of its load. Elements leading (trailing) by more than asin(1e-3) = 0.057 deg carry all (none) of it,
+#: exactly as with the sharp rule n . v > 0; a face moving exactly along itself carries half, whichever
+#: way rounding tips n . v. The ramp is odd about the switch (share(c) + share(-c) = 1), so a
+#: zero-thickness plate (two faces, opposite normals) carries exactly the law's alpha in every
+#: direction, and sums over a smooth surface differ from the sharp rule only at second order in the
+#: band; forces are continuous in the direction of motion.
+LEADING_BAND = 1e-3
+
 __all__ = [
+    "LEADING_BAND",
     "MIN_SPEED",
+    "leading_share",
     "li2013_alpha",
     "li2013_alpha_from_directions",
     "li2013_alpha_material",
@@ -80,6 +92,25 @@ def li2013_alpha_material(
     """:func:`li2013_alpha` with the coefficients and scale of a medium [N/m^3]."""
     rft = material.require_rft() if isinstance(material, Material) else material
     return li2013_alpha(beta, gamma, rft.coefficients, rft.scale)
+
+
+def leading_share(normals: ArrayLike, velocities: ArrayLike) -> NDArray[np.float64]:
+    """Share [0, 1] of each element's load under the leading-edge rule (the NumPy reference).
+
+    ``clip(1/2 + n . v / (2 |v| LEADING_BAND), 0, 1)`` from outward unit normals and velocities, both
+    (N, 2) (or (N, 3)); 0 for elements at rest (speed below :data:`MIN_SPEED`). Continuous in n and v:
+    a face parallel to its motion carries half its load whichever way rounding tips n . v, one leading
+    by more than 0.057 deg all of it, one trailing by more than that nothing.
+    """
+    n = np.asarray(normals, dtype=np.float64)
+    v = np.asarray(velocities, dtype=np.float64)
+    big = np.max(np.abs(v), axis=-1)
+    moving = big >= MIN_SPEED
+    w = v / np.where(moving, big, 1.0)[..., None]  # scale first: tiny or huge speeds stay exact
+    cos_nv = np.einsum("...i,...i->...", n, w) / np.where(
+        moving, np.sqrt(np.einsum("...i,...i->...", w, w)), 1.0
+    )
+    return np.where(moving, np.clip(0.5 + 0.5 * cos_nv / LEADING_BAND, 0.0, 1.0), 0.0)
 
 
 def rft_angles(normals: ArrayLike, velocities: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
