@@ -60,6 +60,9 @@ def _name_max(folder: Path) -> int:
 
 def _check_parent(field_name: str, text: str, p: Path) -> None:
     parent = p.parent
+    outs = current_output_set()
+    if outs is not None and outs.stages(parent):
+        return
     # the nearest existing ancestor must be a folder (a path "under a file" is refused)
     probe = parent
     while not probe.exists() and probe != probe.parent:
@@ -143,6 +146,10 @@ class OutputSet:
         os.close(fd)
         self._files.append((Path(tmp), target))
         return Path(tmp)
+
+    def stages(self, folder: str | Path) -> bool:
+        """Whether ``folder`` (not existing yet) is created by this set at commit."""
+        return Path(folder) in self._folders
 
     def folder(self, target: str | Path) -> Path:
         """Register an output folder (created at commit if it does not exist)."""

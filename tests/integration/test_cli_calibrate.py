@@ -60,13 +60,13 @@ def test_calibrate_rft_cli_and_errors(run_cli, tmp_path):
     csv = tmp_path / "plate.csv"
     csv.write_text("depth_m,force_z_N\n0.02,12.12\n0.04,24.24\n0.06,36.36\n")
     code, out, err = run_cli(
-        "calibrate", "rft", str(csv), "--plate-length", "0.05", "--plate-width", "0.06", "--format", "json"
+        "calibrate", "rft", str(csv), "--length", "0.05", "--width", "0.06", "--format", "json"
     )
     assert code == 0, err
     assert json.loads(out)["zeta_N_per_m3"] == pytest.approx(12.12 / (0.05 * 0.06 * 0.02), rel=1e-6)
     code, _, err = run_cli(
-        "calibrate", "rft", str(tmp_path / "missing.csv"), "--plate-length", "0.05", "--plate-width", "0.06"
+        "calibrate", "rft", str(tmp_path / "missing.csv"), "--length", "0.05", "--width", "0.06"
     )
-    assert code == 2 and "missing.csv" in err
+    assert code == 1 and "missing.csv" in err
     code, _, err = run_cli("calibrate", "bekker", "--plates", str(csv))
-    assert code == 2 and "plate_width_m" in err
+    assert code == 1 and "plate_width_m" in err

@@ -153,5 +153,5 @@ def test_study_run_and_bad_study_file(run_cli, tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text('[study]\nkind = "plate-depth"\n[parameters]\nlenght_m = 0.1\n')
     code, _, err = run_cli("study", "run", str(bad), "--out", str(tmp_path / "t"))
-    assert code == 2 and "lenght_m" in err
+    assert code == 1 and "lenght_m" in err
     assert not (tmp_path / "t").exists()

@@ -93,7 +93,7 @@ def _root() -> Any:
         threads: int | None = typer.Option(
             None,
             "--threads",
-            help="Worker threads for compiled kernels (default: the TERRADYN_THREADS variable, else all cores).",
+            help="Worker threads for compiled kernels (default: TERRADYN_THREADS, else all cores).",
         ),
     ) -> None:
         if threads is not None:

@@ -118,12 +118,15 @@ def _interruptible(outputs: _Outputs) -> Iterator[None]:
     except KeyboardInterrupt as exc:
         t = getattr(exc, "time_s", None)
         at = f" at t = {t:.4g} s" if isinstance(t, float) else ""
-        if outputs.checkpoint is not None and outputs.checkpoint.exists():
-            exc.message = (  # type: ignore[attr-defined]
-                f"run stopped{at}; checkpoint in {outputs.checkpoint}: rerun the same command with --resume"
-            )
+        saved = getattr(exc, "checkpoint_path", None)
+        failure = " ".join(str(getattr(exc, "failure", "") or "").split())
+        if saved is not None and not failure:
+            message = f"run stopped{at}; checkpoint written to {saved}: rerun the same command with --resume"
+        elif saved is not None:
+            message = f"run stopped{at}; the checkpoint could not be written ({failure})"
         else:
-            exc.message = f"run stopped{at}; nothing saved (use --checkpoint FILE to keep work)"  # type: ignore[attr-defined]
+            message = f"run stopped{at}; nothing saved (give --checkpoint FILE to keep the work of a run)"
+        exc.message = message  # type: ignore[attr-defined]
         raise
 
 
@@ -151,19 +154,10 @@ def _field_outputs(result: Any, fields: Path | None, animate: Path | None) -> No
         animate_frames(result.frames, animate, window=win)
 
 
-def _plot_series(result: Any, path: Path, keys: tuple[str, ...]) -> None:
-    import matplotlib.pyplot as plt
+def _plot_series(result: Any, path: Path, kind: str) -> None:
+    from ..plotting.mpm import plot_mpm_history
 
-    df = result.to_dataframe()
-    xkey = "depth_m" if "depth_m" in df.columns else "t_s" if "t_s" in df.columns else df.columns[0]
-    fig, ax = plt.subplots(figsize=(7, 4))
-    for key in keys:
-        if key in df.columns:
-            ax.plot(df[xkey], df[key], label=key)
-    ax.set_xlabel(xkey)
-    ax.legend()
-    ax.set_title("MPM")
-    save_figure(fig, path)
+    save_figure(plot_mpm_history(result, kind=kind), path)
 
 
 @app.command("intrude")
@@ -261,7 +255,7 @@ def intrude(
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)
     if outs.plot is not None:
-        _plot_series(res, outs.plot, ("force_x_N", "force_z_N"))
+        _plot_series(res, outs.plot, "intrusion")
     emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, outs.out)
 
 
@@ -381,7 +375,7 @@ def wheel(
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)
     if outs.plot is not None:
-        _plot_series(res, outs.plot, ("drawbar_pull_N", "force_z_N", "sinkage_m"))
+        _plot_series(res, outs.plot, "wheel")
     keys = (
         "sinkage_m",
         "drawbar_pull_N",

@@ -73,7 +73,9 @@ def flapped_wheel(
     if trace_path is not None:
         atomic_write_text(trace_path, res.evaluations.to_dataframe().to_csv(index=False))
     if plot_path is not None:
-        _plot(res, names, plot_path, metric)
+        from ..plotting.studies import plot_optimization
+
+        save_figure(plot_optimization(res, names, metric), plot_path)
     best: dict[str, object] = {
         "flap_count": int(res.best["flap_count"]),
         "flap_length_ratio": res.best["flap_length_ratio"],
@@ -84,25 +86,3 @@ def flapped_wheel(
     best["evaluations"] = len(res.evaluations)
     best["generations"] = len(res.trace)
     emit(best, fmt, out_path, title="best flapped wheel")
-
-
-def _plot(res, names, path, metric):
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    fig, (a0, a1) = plt.subplots(1, 2, figsize=(11, 4))
-    a0.plot(np.arange(1, len(res.trace) + 1), res.trace, marker="o")
-    a0.set_xlabel("generation")
-    a0.set_ylabel(f"best {metric}")
-    a0.set_title("convergence")
-    c = res.evaluations.columns
-    ok = c["feasible"].astype(bool)
-    sc = a1.scatter(c[names[0]][ok], c[names[1]][ok], c=c["objective"][ok], cmap="viridis", s=14)
-    a1.plot([res.best[names[0]]], [res.best[names[1]]], "r*", ms=14, label="best")
-    fig.colorbar(sc, ax=a1, label=metric)
-    a1.set_xlabel(names[0])
-    a1.set_ylabel(names[1])
-    a1.set_title("objective over the evaluated designs")
-    a1.legend()
-    fig.tight_layout()
-    save_figure(fig, path)

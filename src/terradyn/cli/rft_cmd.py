@@ -59,13 +59,8 @@ def alpha(
         )
     ]
     if plot_path is not None:
-        import matplotlib.pyplot as plt
+        from ..plotting import plot_alpha_maps
 
-        from ..plotting import plot_alpha_map
-
-        fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
-        plot_alpha_map(bb, gg, map_z, label=r"$\alpha_z$", ax=axes[0])
-        plot_alpha_map(bb, gg, map_x, label=r"$\alpha_x$", ax=axes[1])
-        fig.suptitle(f"RFT alpha map, {mat.name}")
+        fig = plot_alpha_maps(bb, gg, map_x, map_z, title=f"RFT alpha map, {mat.name}")
         save_figure(fig, plot_path)
     emit(rows, fmt, out_path, title=f"alpha map, {mat.name}")

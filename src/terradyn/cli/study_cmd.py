@@ -101,7 +101,9 @@ def high_speed(
         else:
             folder.mkdir(parents=True, exist_ok=True)
         atomic_write_text(folder / "high_speed.csv", res.table.to_dataframe().to_csv(index=False))
-        save_figure(_plot_high_speed(res), folder / "high_speed.png")
+        from ..plotting.studies import plot_high_speed
+
+        save_figure(plot_high_speed(res), folder / "high_speed.png")
     onset = res.onset
     rec = {
         "omega_onset_rad_s": onset.get("omega_onset_rad_s"),
@@ -109,27 +111,3 @@ def high_speed(
     }
     rec.update({k: v for k, v in onset.items() if k not in rec})
     emit(rec, fmt, None, title="slip onset")
-
-
-def _plot_high_speed(res):
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    c = res.table.columns
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4))
-    keys = [k for k in ("velocity_normalised", "slip", "sinkage_normalised") if k in c]
-    for model in dict.fromkeys(c["model"].tolist()):
-        m = c["model"] == model
-        x = c["omega_normalised"][m] if "omega_normalised" in c else c["omega_rad_s"][m]
-        for ax, key in zip(axes, keys, strict=False):
-            ax.plot(x, c[key][m], marker="o", label=model)
-            ax.set_ylabel(key)
-    for ax in axes:
-        ax.set_xlabel(r"$\omega \sqrt{\ell / g}$")
-        ax.legend()
-    onset = res.onset.get("omega_onset_normalised")
-    if onset is not None and np.isfinite(onset):
-        for ax in axes:
-            ax.axvline(onset, color="0.5", ls="--")
-    fig.tight_layout()
-    return fig

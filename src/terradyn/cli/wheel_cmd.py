@@ -313,7 +313,6 @@ def plot_sweep(columns: dict[str, Any], media: list[str], path: Path) -> None:
     fig, axes = new_force_slip_figure(len(media))
     for row, name in zip(axes, media, strict=True):
         plot_force_slip(columns, material=name, axes=row)
-    fig.tight_layout()
     save_figure(fig, path)
 
 
