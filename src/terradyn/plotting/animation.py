@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from .core import _nice, bin_arrows
 
 __all__ = [
     "animate_body",
@@ -63,15 +64,6 @@ def plot_time_series(result: Any, *, axes: Any = None) -> Any:
     return axes
 
 
-def _nice(value: float) -> float:
-    """1, 2 or 5 times a power of ten, at most ``value`` (> 0)."""
-    exp = np.floor(np.log10(value))
-    for m in (5.0, 2.0, 1.0):
-        if m * 10**exp <= value:
-            return float(m * 10**exp)
-    return float(10**exp)  # pragma: no cover - m = 1 always fits
-
-
 _MAX_ARROWS = 12
 
 
@@ -106,16 +98,9 @@ class _BodyFrames:
         )
 
     def _arrows(self, i: int) -> tuple[np.ndarray, np.ndarray, int]:
-        """Loaded elements of row ``i`` in runs of ``k`` neighbours (at most ~12 arrows): mean position
-        [m] and summed force [N] of each run, and ``k``."""
+        """Loaded elements of row ``i`` summed in runs of ``k`` neighbours (see :func:`bin_arrows`)."""
         el = self._forces(i)
-        pos, f = el.positions[el.active], el.forces[el.active]
-        k = max(1, int(np.ceil(len(f) / _MAX_ARROWS)))
-        groups = np.arange(len(f)) // k
-        count = np.bincount(groups).astype(float)
-        mean_pos = np.column_stack([np.bincount(groups, weights=pos[:, j]) / count for j in (0, 1)])
-        total = np.column_stack([np.bincount(groups, weights=f[:, j]) for j in (0, 1)])
-        return mean_pos.reshape(-1, 2), total.reshape(-1, 2), k
+        return bin_arrows(el.positions[el.active], el.forces[el.active], _MAX_ARROWS)
 
     def draw(self, ax: Any, i: int) -> None:
         from ..kinematics import Pose2D, to_world

@@ -144,6 +144,7 @@ def plot_force_depth(
     ax.axhline(0.0, color="0.6", lw=0.8)
     if title:
         ax.set_title(title)
+    ax.grid(True, alpha=0.35)
     ax.legend()
     return ax
 
@@ -157,26 +158,82 @@ def plot_body_tractions(
     ax: Any = None,
     title: str = "",
 ) -> Any:
-    """A body outline (world polygons [m]) with per-element force arrows and the free surface."""
+    """A body outline (world polygons [m]) with per-element force arrows [N] and the free surface.
+
+    Neighbouring elements are summed in runs of k so at most ~24 arrows are drawn (the key says k). The
+    arrows share one length scale (the largest is drawn a quarter of the body size long), shown by a key
+    arrow in newtons; the bed below ``surface_level`` [m] is shaded. Returns the axes.
+    """
     ax = new_axes(ax)
+    pts = np.vstack([np.asarray(p) for p in outline]) if outline else np.asarray(positions)
+    size = float(np.ptp(pts, axis=0).max()) if len(pts) else 1.0
     for poly in outline:
         closed = np.vstack((poly, poly[:1]))
-        ax.plot(closed[:, 0], closed[:, 1], color="k", lw=1.0)
+        ax.fill(closed[:, 0], closed[:, 1], facecolor="0.88", edgecolor="k", lw=1.0, zorder=2)
+    forces = np.asarray(forces, dtype=float).reshape(-1, 2)
     active = np.hypot(forces[:, 0], forces[:, 1]) > 0
-    if np.any(active):
-        ax.quiver(
-            positions[active, 0],
-            positions[active, 1],
-            forces[active, 0],
-            forces[active, 1],
+    pos, total, k = bin_arrows(np.asarray(positions, dtype=float).reshape(-1, 2)[active], forces[active])
+    if len(total):
+        peak = float(np.hypot(total[:, 0], total[:, 1]).max())
+        metres_per_newton = 0.25 * size / peak
+        f = total * metres_per_newton
+        q = ax.quiver(
+            pos[:, 0],
+            pos[:, 1],
+            f[:, 0],
+            f[:, 1],
             color="tab:red",
             angles="xy",
+            scale_units="xy",
+            scale=1,
             width=0.004,
+            zorder=3,
         )
-    ax.axhline(surface_level, color="tab:brown", lw=1.2)
+        key = _nice(0.5 * peak)
+        ax.quiverkey(
+            q,
+            0.82,
+            0.06,
+            key * metres_per_newton,
+            f"RFT force, {key:g} N per {'element' if k == 1 else f'{k} elements'}",
+            labelpos="N",
+            coordinates="axes",
+            fontproperties={"size": 8},
+        )
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    pad = 0.35 * size
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(min(lo[1], surface_level) - pad, max(hi[1], surface_level) + pad)
+    ax.axhspan(ax.get_ylim()[0] - size, surface_level, color="tan", alpha=0.35, lw=0, zorder=0)
+    ax.axhline(surface_level, color="saddlebrown", lw=1.2, label="free surface", zorder=1)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
+    ax.legend(loc="upper right", fontsize=8)
     if title:
         ax.set_title(title)
     return ax
+
+
+def bin_arrows(
+    positions: np.ndarray, forces: np.ndarray, max_arrows: int = 24
+) -> tuple[np.ndarray, np.ndarray, int]:
+    """Consecutive elements in runs of ``k`` (so at most ~``max_arrows`` arrows): mean position [m] and
+    summed force [N] of each run, and ``k`` (1 when there are few elements)."""
+    k = max(1, int(np.ceil(len(forces) / max_arrows)))
+    if len(forces) == 0:
+        return np.zeros((0, 2)), np.zeros((0, 2)), k
+    groups = np.arange(len(forces)) // k
+    count = np.bincount(groups).astype(float)
+    mean_pos = np.column_stack([np.bincount(groups, weights=positions[:, j]) / count for j in (0, 1)])
+    total = np.column_stack([np.bincount(groups, weights=forces[:, j]) for j in (0, 1)])
+    return mean_pos, total, k
+
+
+def _nice(value: float) -> float:
+    """1, 2 or 5 times a power of ten, at most ``value`` (> 0)."""
+    exp = np.floor(np.log10(value))
+    for m in (5.0, 2.0, 1.0):
+        if m * 10**exp <= value:
+            return float(m * 10**exp)
+    return float(10**exp)  # pragma: no cover - m = 1 always fits

@@ -30,6 +30,17 @@ def _values(fields: dict[str, Any], quantity: str) -> np.ndarray:
     return v / 1e3 if quantity == "pressure" else v
 
 
+def _marker_area(ax: Any, fields: dict[str, Any]) -> float:
+    """Scatter marker area [pt^2] so that particles about touch (spacing from the bed's extent)."""
+    x, z = np.asarray(fields["x"], dtype=float), np.asarray(fields["z"], dtype=float)
+    if len(x) < 2:
+        return 4.0
+    spacing = np.sqrt(max(float(np.ptp(x) * np.ptp(z)), 1e-12) / len(x))
+    width_pt = ax.get_position().width * ax.figure.get_figwidth() * 72.0
+    pt_per_m = width_pt / max(float(np.ptp(x)), 1e-9)
+    return float(np.clip((0.7 * spacing * pt_per_m) ** 2, 0.5, 30.0))
+
+
 def _draw(ax: Any, fields: dict[str, Any], quantity: str, segments: Any, vmax: float | None) -> Any:
     from matplotlib.collections import LineCollection
 
@@ -41,7 +52,7 @@ def _draw(ax: Any, fields: dict[str, Any], quantity: str, segments: Any, vmax: f
         np.asarray(fields["x"]),
         np.asarray(fields["z"]),
         c=v,
-        s=2.0,
+        s=_marker_area(ax, fields),
         cmap=cmap,
         vmin=lo,
         vmax=max(hi, lo + 1e-12),
@@ -54,6 +65,24 @@ def _draw(ax: Any, fields: dict[str, Any], quantity: str, segments: Any, vmax: f
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
     return sc, label
+
+
+def _clip_window(
+    fields: dict[str, Any], window: tuple[float, float, float, float] | None, segments: Any = None
+) -> tuple[float, float, float, float] | None:
+    """``window`` cut to the extent of the particles and the body (plus 5 %): no empty margins."""
+    if window is None or not len(fields["x"]):
+        return window
+    x, z = np.asarray(fields["x"], dtype=float), np.asarray(fields["z"], dtype=float)
+    if segments is not None and len(segments):
+        pts = np.asarray(segments, dtype=float).reshape(-1, 2)
+        x, z = np.concatenate((x, pts[:, 0])), np.concatenate((z, pts[:, 1]))
+    pad = 0.05 * max(float(np.ptp(x)), float(np.ptp(z)), 1e-9)
+    lo_x, hi_x = max(window[0], float(x.min()) - pad), min(window[1], float(x.max()) + pad)
+    lo_z, hi_z = max(window[2], float(z.min()) - pad), min(window[3], float(z.max()) + pad)
+    if lo_x >= hi_x or lo_z >= hi_z:
+        return window
+    return (lo_x, hi_x, lo_z, hi_z)
 
 
 def plot_fields(
@@ -74,7 +103,10 @@ def plot_fields(
 
     if not quantities:
         raise InputError("quantities", quantities, "at least one quantity")
-    fig, axes = plt.subplots(len(quantities), 1, figsize=(8, 3.2 * len(quantities)), squeeze=False)
+    fig, axes = plt.subplots(
+        len(quantities), 1, figsize=(8, 3.2 * len(quantities)), squeeze=False, layout="constrained"
+    )
+    window = _clip_window(fields, window, segments)
     for ax, q in zip(axes[:, 0], quantities, strict=True):
         sc, label = _draw(ax, fields, q, segments, None)
         fig.colorbar(sc, ax=ax, label=label, shrink=0.9)
@@ -83,7 +115,6 @@ def plot_fields(
             ax.set_ylim(window[2], window[3])
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
     return fig
 
 
@@ -112,7 +143,7 @@ def animate_frames(
     if len(frames) < 2:
         raise InputError("frames", len(frames), "at least 2 frames (run with frame_count >= 2)")
     vmax = max(float(np.percentile(_values(f, quantity), 99.5)) for f in frames)
-    fig, ax = plt.subplots(figsize=(8, 3.5))
+    fig, ax = plt.subplots(figsize=(8, 3.5), layout="constrained")
     label = _LABELS.get(quantity, (quantity, ""))[0]
     first = _draw(ax, frames[0], quantity, frames[0].get("segments"), vmax)[0]
     fig.colorbar(first, ax=ax, label=label, shrink=0.9)

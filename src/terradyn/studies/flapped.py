@@ -109,7 +109,11 @@ def _run(p: FlappedParams) -> StudyOutput:
         phase_count=8 if p.quick else 24,
     )
     c = t.columns
-    fig, axes = plt.subplots(1, len(p.media), figsize=(5.5 * len(p.media), 4), squeeze=False)
+    from matplotlib.ticker import MaxNLocator
+
+    fig, axes = plt.subplots(
+        1, len(p.media), figsize=(5.5 * len(p.media), 4), squeeze=False, layout="constrained"
+    )
     summary = []
     for ax, name in zip(axes[0], p.media, strict=True):
         mat = materials.get(name).name
@@ -127,11 +131,13 @@ def _run(p: FlappedParams) -> StudyOutput:
                         c["flap_count"][m],
                         c["velocity_normalised"][m],
                         marker="o",
-                        label=f"L/r = {ratio:g}, W = {load:g} N",
+                        label=f"L / r = {ratio:g}, W = {load:g} N",
                     )
-        ax.set_xlabel("flap count")
-        ax.set_ylabel(r"$V / (\omega R_{out})$")
-        ax.set_title(f"flapped wheel, {mat}")
+        ax.set_xlabel("flap count [-]")
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+        ax.set_ylabel(r"normalised speed $V / (\omega R_{out})$ [-]")
+        ax.set_title(f"flapped wheel, {mat} (L: flap length, r: hub radius)")
+        ax.grid(True, alpha=0.35)
         ax.legend(fontsize=7)
         m = (c["material"] == mat) & c["solved"].astype(bool)
         if np.any(m):
@@ -145,7 +151,6 @@ def _run(p: FlappedParams) -> StudyOutput:
                     "velocity_normalised": float(c["velocity_normalised"][k]),
                 }
             )
-    fig.tight_layout()
     return StudyOutput({"flapped_wheels": t}, {"flapped_wheels": fig}, summary)
 
 

@@ -232,7 +232,9 @@ def _run_alpha(p: MPMAlphaParams) -> StudyOutput:
     body = Plate(md["plate_length_m"], md["plate_width_m"], thickness=md["mpm_plate_thickness_m"])
     norm = md["plate_length_m"] * md["plate_width_m"] * md["depth_m"]
     gam = np.linspace(1.0, 179.0, 90)
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), sharex=True)
+    from matplotlib.lines import Line2D
+
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.6), sharex=True, layout="constrained")
     for k, a in enumerate(angles):
         colour = f"C{k}"
         law = np.array([li2013_alpha_material(-math.radians(a), math.radians(g), mat) for g in gam])
@@ -247,17 +249,27 @@ def _run_alpha(p: MPMAlphaParams) -> StudyOutput:
                 c[f"alpha_{comp}_mpm_N_per_m3"][sel] / 1e6,
                 "o",
                 color=colour,
-                label=f"angle {a:g} deg",
+                mec="k",
             )
     for ax, comp in zip(axes, ("z", "x"), strict=True):
-        ax.set_xlabel("direction of motion gamma [deg below +x]")
-        ax.set_ylabel(f"alpha_{comp} [N/cm^3]")
+        ax.set_xlabel(r"direction of motion $\gamma$ [deg below +x]")
+        ax.set_ylabel(rf"$\alpha_{comp}$ [N/cm$^3$] (= N/m$^3$ $\times$ 10$^{{-6}}$)")
         ax.axhline(0.0, color="k", lw=0.5)
-    axes[0].legend(fontsize=7, title="o MPM, -- RFT on MPM plate, - RFT thin plate", title_fontsize=7)
+        ax.set_xlim(0.0, 180.0)
+        ax.set_xticks(np.arange(0.0, 181.0, 30.0))
+        ax.grid(True, alpha=0.35)
+    handles = [
+        Line2D([], [], color=f"C{k}", lw=2, label=f"plate angle {a:g} deg") for k, a in enumerate(angles)
+    ]
+    handles += [
+        Line2D([], [], color="0.3", marker="o", mec="k", ls="none", label="MPM"),
+        Line2D([], [], color="0.3", ls="--", label="RFT on the MPM plate (with thickness)"),
+        Line2D([], [], color="0.3", lw=0.8, label="RFT, thin plate"),
+    ]
+    fig.legend(handles=handles, loc="outside lower center", ncols=min(len(handles), 4), fontsize=8)
     fig.suptitle(
-        f"Plate stress per depth, MPM (cell {cell * 1e3:g} mm, {p.speed_m_s:g} m/s) vs RFT, {mat.name}"
+        f"Plate stress per depth, MPM (cell {cell * 1e3:.3g} mm, {p.speed_m_s:g} m/s) vs RFT, {mat.name}"
     )
-    fig.tight_layout()
     m_all = np.concatenate([c["alpha_x_mpm_N_per_m3"], c["alpha_z_mpm_N_per_m3"]])
 
     def fit(kind: str) -> tuple[float, float]:
@@ -303,20 +315,23 @@ def _run_wheel(p: MPMWheelParams) -> StudyOutput:
         workers=p.workers,
     )
     c = t.columns
-    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8))
-    for ax, key, label in (
-        (axes[0], "sinkage", "sinkage [m]"),
-        (axes[1], "drawbar_pull", "drawbar pull [N]"),
-        (axes[2], "drive_torque", "drive torque [N m]"),
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), layout="constrained")
+    for ax, key, label, scale in (
+        (axes[0], "sinkage", "sinkage [mm]", 1e3),
+        (axes[1], "drawbar_pull", "drawbar pull [N]", 1.0),
+        (axes[2], "drive_torque", "drive torque [N m]", 1.0),
     ):
         unit = "m" if key == "sinkage" else ("N" if key == "drawbar_pull" else "Nm")
-        ax.plot(c["slip"], c[f"{key}_rft_{unit}"], "s-", label="RFT (steady)")
-        ax.plot(c["slip"], c[f"{key}_mpm_{unit}"], "o--", label="MPM (plane strain)")
-        ax.set_xlabel("slip")
+        ax.plot(c["slip"], c[f"{key}_rft_{unit}"] * scale, "s-", label="RFT (steady)")
+        ax.plot(c["slip"], c[f"{key}_mpm_{unit}"] * scale, "o--", label="MPM (plane strain)")
+        ax.set_xlabel("slip [-]")
         ax.set_ylabel(label)
+        ax.axhline(0.0, color="0.7", lw=0.8)
+        ax.grid(True, alpha=0.35)
+        if len(slips) == 1:
+            ax.set_xlim(slips[0] - 0.1, slips[0] + 0.1)
     axes[0].legend()
     fig.suptitle(f"Forced-slip wheel, {t.metadata['material']}, load {p.load_N:g} N")
-    fig.tight_layout()
     return StudyOutput({"mpm_wheel": t}, {"mpm_wheel": fig}, t.records())
 
 

@@ -138,7 +138,7 @@ def _lift_drag(p: LiftDragParams) -> StudyOutput:
     mat = materials.get(p.material)
     depths = np.linspace(0.0, p.max_depth_m, 5 if p.quick else p.depth_count)
     t = lift_drag(mat, depths, size=p.size_m, width=p.width_m)
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
     out = StudyOutput({"lift_drag": t}, {"lift_drag": fig})
     for name in dict.fromkeys(t.columns["body"].tolist()):
         m = t.columns["body"] == name
@@ -155,6 +155,7 @@ def _lift_drag(p: LiftDragParams) -> StudyOutput:
         ax.set_xlabel("depth of body centre [mm]")
         ax.set_ylabel(lab)
         ax.axhline(0, color="0.7", lw=0.8)
+        ax.grid(True, alpha=0.35)
     axes[0].legend(fontsize=8)
     fig.suptitle(f"RFT drag and lift, {mat.name}")
     return out
@@ -170,7 +171,7 @@ def _wedges(p: WedgeParams) -> StudyOutput:
     t = wedges_versus_plate(
         mat, depth=p.depth_m, base=p.base_m, width=p.width_m, heights=heights, tip_offsets=p.tip_offsets_m
     )
-    fig, ax = plt.subplots(figsize=(6, 4))
+    fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
     for e in p.tip_offsets_m:
         m = np.isclose(t.columns["tip_offset_m"], e)
         ax.plot(

@@ -304,9 +304,11 @@ def wheel3d_width_effect(
 def plot_width_effect(table: TableResult, *, ax: Any = None) -> Any:
     """3D / 2D vertical-force and torque ratios versus width / radius, one line per case. Returns ax."""
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.ticker import FixedLocator, NullLocator
 
     if ax is None:
-        _, ax = plt.subplots(figsize=(6.5, 4.2))
+        _, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
     c = table.columns
     for angle in dict.fromkeys(c["slip_angle_rad"].tolist()):
         for rule in (True, False):
@@ -320,10 +322,20 @@ def plot_width_effect(table: TableResult, *, ax: Any = None) -> Any:
                 color=line[0].get_color(),
             )  # fmt: skip
     ax.set_xscale("log")
+    ratios = sorted(set(np.asarray(c["width_over_radius"], dtype=float).tolist()))
+    ax.xaxis.set_major_locator(FixedLocator(ratios))
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.set_xticklabels([f"{r:g}" for r in ratios])
     ax.set_xlabel("width / radius [-]")
-    ax.set_ylabel("3D / (2D x width) [-]: F_z (solid), torque (dashed)")
+    ax.set_ylabel("3D / (2D x width) [-]")
     ax.axhline(1.0, color="0.7", lw=0.8)
-    ax.legend(fontsize=7)
+    ax.grid(True, alpha=0.35)
+    handles = ax.get_legend_handles_labels()[0]
+    handles += [
+        Line2D([], [], color="k", marker="o", label="vertical force $F_z$"),
+        Line2D([], [], color="k", marker="s", ls="--", label="drive torque"),
+    ]
+    ax.legend(handles=handles, fontsize=7)
     return ax
 
 
@@ -367,17 +379,18 @@ def _run_vs_2d(p: Wheel3DVs2DParams) -> StudyOutput:
         slips=[s for s in p.slips if abs(s) <= 0.3] if p.quick else p.slips,
         circumferential_resolution=_resolution(p),
     )  # fmt: skip
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4), layout="constrained")
     c = t.columns
     for d in dict.fromkeys(c["sinkage_m"].tolist()):
         m = c["sinkage_m"] == d
-        axes[0].plot(c["slip"][m], c["ratio_vertical_force"][m], marker="o", label=f"sinkage {d * 1e3:g} mm")
-        axes[1].plot(c["slip"][m], c["torque_difference_per_fz_r"][m], marker="o")
-    axes[0].set_ylabel("F_z 3D / (2D x width) [-]")
-    axes[1].set_ylabel("(T_3D - T_2D) / (F_z,2D r) [-]")
+        for ax, key in zip(axes, ("ratio_vertical_force", "torque_difference_per_fz_r"), strict=True):
+            ax.plot(c["slip"][m], c[key][m], marker="o", label=f"sinkage {d * 1e3:g} mm")
+    axes[0].set_ylabel(r"$F_{z,3D} / (F_{z,2D} \times$ width) [-]")
+    axes[1].set_ylabel(r"$(T_{3D} - T_{2D}) / (F_{z,2D}\, r)$ [-]")
     for ax in axes:
         ax.set_xlabel("slip [-]")
-    axes[0].legend(fontsize=8)
+        ax.grid(True, alpha=0.35)
+        ax.legend(fontsize=8)
     fig.suptitle(f"3D RFT cylinder vs plane RFT x width, {t.metadata['material']} (matched plate value)")
     keys = (
         "ratio_vertical_force",
@@ -406,7 +419,6 @@ def _run_width(p: Wheel3DWidthParams) -> StudyOutput:
     )  # fmt: skip
     ax = plot_width_effect(t)
     ax.set_title(f"Edge effects of 3D RFT, {t.metadata['material']}, sinkage {p.sinkage_m * 1e3:g} mm")
-    ax.figure.tight_layout()
     summary = [{k: (v.item() if hasattr(v, "item") else v) for k, v in r.items()} for r in t.records()]
     return StudyOutput({"wheel3d_width": t}, {"wheel3d_width": ax.figure}, summary)
 

@@ -95,7 +95,6 @@ def _run(p: WheelForceSlipParams) -> StudyOutput:
     for row, name in zip(axes, [materials.get(m).name for m in p.media], strict=True):
         plot_force_slip(t.columns, material=name, axes=row)
     fig.suptitle(f"Rigid wheel {2 * p.radius_m:g} m x {p.width_m:g} m: RFT (solid) and Wong-Reece (dashed)")
-    fig.tight_layout()
     return StudyOutput(
         {"wheel_force_slip": t},
         {"wheel_force_slip": fig},
