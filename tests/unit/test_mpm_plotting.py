@@ -106,3 +106,15 @@ def test_mpm_intrusion_history_plots_force_and_torque_versus_depth(mpm_runs):
         plot_mpm_history(mpm_runs[0], kind="plate")
     with pytest.raises(InputError, match="result"):
         plot_mpm_history(mpm_runs[0], kind="wheel")
+
+
+def test_plot_fields_window_is_cut_to_bed_and_body():
+    f = _frame(0.0)
+    fig = plot_fields(f, segments=f["segments"], quantities=("speed",), window=(-1.0, 1.0, -1.0, 1.0))
+    (ax,) = [a for a in fig.axes if a.get_label() != "<colorbar>"]
+    lo, hi = ax.get_xlim()
+    assert -0.12 < lo < -0.1 and 0.1 < hi < 0.12  # particles span [-0.1, 0.1]
+    assert ax.get_ylim()[1] >= float(np.asarray(f["segments"])[..., 1].max())
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("x [m]", "z [m]")
+    bar = next(a for a in fig.axes if a.get_label() == "<colorbar>")
+    assert bar.get_ylabel() == "|v| [m/s]"
