@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..errors import InputError, SolverError, check_positive, check_range
 from ..geometry import Body, WheelCircular
@@ -114,59 +114,25 @@ def _as_model(model: TerrainModel | Material) -> TerrainModel:
 
 
 class _ForceFunction:
-    """Period-averaged wrench of a wheel at an axle height, for one twist."""
+    """Period-averaged wrench of a wheel at an axle height, for one twist (any terrain model).
+
+    The generic path (Wong-Reece, DRFT, user models): one ``model.wrench`` call per phase and height.
+    Quasi-static RFT takes the compiled path (:func:`_rft_point`) instead.
+    """
 
     def __init__(self, model: TerrainModel, body: Body, twist: Twist2D, thetas: np.ndarray) -> None:
         self.model, self.body, self.twist, self.thetas = model, body, twist, thetas
         self.surface = float(getattr(model, "surface_level", 0.0))
-        self._rft: tuple[Any, ...] | None = None
-        if isinstance(model, RFTModel):
-            el = body.discretize(model.element_size)
-            rft = model.material.require_rft()
-            self._rft = (
-                el.midpoints,
-                el.normals,
-                el.lengths,
-                el.width,
-                rft.coefficients.as_array(),
-                rft.scale,
-            )
 
     def phases(self, z: float) -> np.ndarray:
         """Wrenches (P, 3) over the phases at axle height ``z`` [m] (torque about the axle)."""
         tw = self.twist
-        if self._rft is not None:
-            from ..rft._kernels import rft_wrench_phases_kernel
-
-            mid, nrm, lng, width, coeffs, scale = self._rft
-            return rft_wrench_phases_kernel(
-                mid, nrm, lng, width, 0.0, z, self.thetas, tw.vx, tw.vz, tw.omega, coeffs, scale, self.surface
-            )
         return np.array(
             [self.model.wrench(self.body, Pose2D(0.0, z, th), tw).as_array() for th in self.thetas]
         )
 
     def vertical_many(self, heights: np.ndarray) -> np.ndarray:
         """Period-averaged vertical force [N] at each axle height (H,) [m]."""
-        tw = self.twist
-        if self._rft is not None:
-            from ..rft._kernels import rft_vertical_mean_kernel
-
-            mid, nrm, lng, width, coeffs, scale = self._rft
-            return rft_vertical_mean_kernel(
-                mid,
-                nrm,
-                lng,
-                width,
-                np.ascontiguousarray(heights, dtype=float),
-                self.thetas,
-                tw.vx,
-                tw.vz,
-                tw.omega,
-                coeffs,
-                scale,
-                self.surface,
-            )
         return np.array([self.phases(float(z))[:, 1].mean() for z in heights])
 
     def vertical(self, z: float) -> float:
@@ -197,8 +163,85 @@ def _solve_height(fn: _ForceFunction, load: float, top: float, what: str) -> flo
     j = int(above[0])
     if np.any(np.diff(fz[j - 1 :]) > 1e-9 * max(1.0, load)) and np.any(fz[j:] >= load):
         raise SolverError(f"{what}: vertical force is not monotonic in sinkage; no unique sinkage")
+    from scipy.optimize import brentq
+
     g = lambda z: fn.vertical(z) - load  # noqa: E731
     return float(brentq(g, grid[j - 1], grid[j], xtol=1e-12 * top, rtol=1e-13, maxiter=200))
+
+
+@lru_cache(maxsize=64)
+def _rft_wheel_arrays(body: Body, element_size: float | None) -> tuple[Any, ...]:
+    """(midpoints, normals, lengths, width, outline points (M, 2)) of a body, computed once per body."""
+    el = body.discretize(element_size)
+    return el.midpoints, el.normals, el.lengths, float(el.width), np.concatenate(body.outline())
+
+
+def _rft_arrays(body: Body, element_size: float | None) -> tuple[Any, ...]:
+    try:
+        return _rft_wheel_arrays(body, element_size)
+    except TypeError:  # an unhashable body: no cache
+        return _rft_wheel_arrays.__wrapped__(body, element_size)
+
+
+def _rft_point(
+    model: RFTModel, body: Body, load: float, slip: float, omega: float, thetas: np.ndarray, twist: Twist2D
+) -> WheelSteadyResult:
+    """:func:`wheel_steady` for quasi-static RFT: the whole solve in one compiled call."""
+    from . import _steady_kernels as k
+
+    mid, nrm, lng, width, points = _rft_arrays(body, model.element_size)
+    rft = model.material.require_rft()
+    out = np.empty(16)
+    surface = float(model.surface_level)
+    status = k.rft_steady_kernel(
+        mid, nrm, lng, width, points, thetas, twist.vx, twist.vz, twist.omega, _coefficients(rft),
+        rft.scale, surface, load, 200, out,
+    )  # fmt: skip
+    if status != k.OK:
+        _raise_status(status, f"load {load:g} N at slip {slip:g}", load, float(out[1]))
+    (z, _, dp, drive, dp_lo, dp_hi, drive_lo, drive_hi, fz_lo, fz_hi, sink, sink_lo, sink_hi,
+     entry, exit_, found) = out.tolist()  # fmt: skip
+    power = drive * omega
+    return WheelSteadyResult(
+        model=model.name, slip=slip, load_N=load, omega_rad_s=omega, forward_velocity_m_s=twist.vx,
+        sinkage_m=sink, axle_height_m=z - surface, drawbar_pull_N=dp, drive_torque_Nm=drive,
+        power_W=power, tractive_efficiency=dp * twist.vx / power if power > 0 else 0.0,
+        entry_angle_rad=entry if found else 0.0, exit_angle_rad=exit_ if found else 0.0,
+        drawbar_pull_min_N=dp_lo, drawbar_pull_max_N=dp_hi, drive_torque_min_Nm=drive_lo,
+        drive_torque_max_Nm=drive_hi, vertical_force_min_N=fz_lo, vertical_force_max_N=fz_hi,
+        sinkage_min_m=sink_lo, sinkage_max_m=sink_hi, phase_count=len(thetas),
+    )  # fmt: skip
+
+
+def _coefficients(rft: Any) -> np.ndarray:
+    """Kernel-order Li coefficients (read-only, cached per coefficient set)."""
+    try:
+        return _coefficient_array(rft.coefficients)
+    except TypeError:  # unhashable
+        return np.asarray(rft.coefficients.as_array(), dtype=np.float64)
+
+
+@lru_cache(maxsize=64)
+def _coefficient_array(coefficients: Any) -> np.ndarray:
+    arr = np.asarray(coefficients.as_array(), dtype=np.float64)
+    arr.setflags(write=False)
+    return arr
+
+
+def _raise_status(status: int, what: str, load: float, carried: float) -> None:
+    """The SolverError of a failed compiled solve (messages as the generic path)."""
+    from . import _steady_kernels as k
+
+    if status == k.OVERLOADED:
+        raise SolverError(
+            f"{what}: the medium carries at most {carried:.4g} N before the axle reaches the surface, "
+            f"less than the load {load:.4g} N (lower the load or use a wider or larger wheel)"
+        )
+    if status == k.NO_CONTACT:
+        raise SolverError(f"{what}: the body carries the load even with no contact; check its geometry")
+    if status == k.NOT_MONOTONIC:
+        raise SolverError(f"{what}: vertical force is not monotonic in sinkage; no unique sinkage")
+    raise SolverError(f"{what}: the sinkage did not converge in 200 iterations")
 
 
 def wheel_steady(
@@ -237,6 +280,8 @@ def wheel_steady(
     period = wheel_rotation_period(body)
     thetas = np.zeros(1) if period is None else np.arange(phase_count) * period / phase_count
     twist = Twist2D((1.0 - slip) * omega * radius, 0.0, omega)
+    if isinstance(model, RFTModel):
+        return _rft_point(model, body, load, slip, omega, thetas, twist)
     fn = _ForceFunction(model, body, twist, thetas)
     lowest = _lowest_points(body, thetas)
     surface = fn.surface
@@ -352,6 +397,8 @@ def wheel_self_propelled(
             f"drawbar load {drawbar_load:g} N is below the pull at slip {lo} "
             f"({f_lo + drawbar_load:.4g} N): the wheel would be pushed"
         )
+    from scipy.optimize import brentq
+
     s = float(brentq(excess, lo, hi, xtol=1e-10, maxiter=200))
     res = wheel_steady(body, model, load, s, omega=omega, phase_count=phase_count)
     return WheelSteadyResult(**{**asdict(res), "extra": {"drawbar_load_N": drawbar_load}})

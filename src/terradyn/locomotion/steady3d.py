@@ -44,7 +44,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
 
 from ..errors import InputError, SolverError, check_finite, check_positive, check_range
 from ..geometry3d import TriangleMesh
@@ -60,8 +59,12 @@ __all__ = [
     "wheel_steady_3d",
 ]
 
-# Axle heights of the coarse scan that brackets the load.
+# Axle heights of the coarse scan that brackets the load (as _steady_kernels.SCAN_POINTS).
 _SCAN_POINTS = 17
+
+# Facet evaluations of the coarse scan below which it runs on one thread (a parallel launch costs more
+# than it saves on small meshes, and on a shared machine a second thread may not get a core at all).
+_MIN_PARALLEL_WORK = 200_000
 
 
 @dataclass(frozen=True)
@@ -271,6 +274,8 @@ def _solve_height(wheel: _Wheel3D, load: float, low: float, high: float, what: s
     def residual(z: float) -> float:
         return float(wheel.vertical([z])[0]) - load
 
+    from scipy.optimize import brentq
+
     span = max(high - low, 1e-12)
     return float(brentq(residual, grid[j - 1], grid[j], xtol=1e-13 * span, rtol=1e-14, maxiter=200))
 
@@ -419,30 +424,94 @@ def wheel_steady_3d(
         -np.sin(thetas)[:, None] * v[None, :, 0] + np.cos(thetas)[:, None] * v[None, :, 2], axis=1
     )
     what = f"load {load:g} N at slip {slip:g}, slip angle {math.degrees(slip_angle):g} deg"
+    state = _solve_state(wheel, lowest, load, what)
+    z, (fx, fy, fz, mx, drive, mz), (dp_lo, dp_hi, fy_lo, fy_hi, drive_lo, drive_hi, fz_lo, fz_hi) = state[:3]
+    sink, sink_lo, sink_hi = state[3]
+    x0, x1, y0, y1, entry, exit_ = state[4]
+    power = drive * omega
+    return WheelSteady3DResult(
+        model="rft3d", slip=slip, slip_angle_rad=slip_angle, load_N=load, omega_rad_s=omega,
+        nominal_radius_m=radius, longitudinal_velocity_m_s=vx, lateral_velocity_m_s=vy,
+        sinkage_m=sink, axle_height_m=z - surface, drawbar_pull_N=fx, side_force_N=fy,
+        vertical_force_N=fz, drive_torque_Nm=drive, power_W=power,
+        tractive_efficiency=fx * vx / power if power > 0 else 0.0,
+        aligning_moment_Nm=mz, overturning_moment_Nm=mx,
+        contact_x_min_m=x0, contact_x_max_m=x1, contact_y_min_m=y0, contact_y_max_m=y1,
+        contact_length_m=x1 - x0, contact_width_m=y1 - y0, entry_angle_rad=entry, exit_angle_rad=exit_,
+        drawbar_pull_min_N=dp_lo, drawbar_pull_max_N=dp_hi, side_force_min_N=fy_lo, side_force_max_N=fy_hi,
+        drive_torque_min_Nm=drive_lo, drive_torque_max_Nm=drive_hi,
+        vertical_force_min_N=fz_lo, vertical_force_max_N=fz_hi,
+        sinkage_min_m=sink_lo, sinkage_max_m=sink_hi, phase_count=phase_count,
+        period_rad=span, facet_count=mesh.facet_count,
+    )  # fmt: skip
+
+
+_State = tuple[
+    float,
+    tuple[float, float, float, float, float, float],
+    tuple[float, float, float, float, float, float, float, float],
+    tuple[float, float, float],
+    tuple[float, float, float, float, float, float],
+]
+
+
+def _solve_compiled(wheel: _Wheel3D, lowest: NDArray[np.float64], load: float, what: str) -> _State:
+    """(z, means (F_x, F_y, F_z, M_x, drive torque, M_z), min/max pairs (F_x, F_y, drive, F_z),
+    sinkage (mean, min, max), contact patch) of the steady state: the whole solve compiled."""
+    import numba
+
+    from ..rft.rft3d import UPWARD_TOLERANCE, _medium
+    from . import _steady_kernels as k
+
+    low, high = wheel.surface, wheel.surface - float(lowest.min())
+    centroids, normals, areas = wheel.mesh.kernel_arrays
+    order = k.rft3d_facet_order_kernel(centroids, normals, areas, wheel.rotations, wheel.surface, low, high)
+    xi, mu = _medium(wheel.medium, wheel.surface_friction, 9.81)
+    out = np.zeros(30)
+    with numba.parallel_chunksize(1):  # scan items differ in size: hand them out one at a time
+        status = k.rft3d_steady_kernel(
+            *order, wheel.rotations, lowest, wheel.linear, wheel.angular, _coefficients(), xi,
+            wheel.surface, wheel.leading_edge, mu, UPWARD_TOLERANCE, low, high, load, 200,
+            _MIN_PARALLEL_WORK, out,
+        )  # fmt: skip
+    if status == k.OVERLOADED:
+        raise SolverError(
+            f"{what}: the medium carries at most {out[1]:.6g} N (maximum, with the axle at the surface), "
+            f"less than the load {load:.6g} N (lower the load or use a wider or larger wheel)"
+        )
+    if status == k.NOT_MONOTONIC:
+        raise SolverError(f"{what}: vertical force is not monotonic in sinkage; no unique sinkage")
+    if status == k.NO_CONTACT:
+        raise SolverError(f"{what}: the wheel carries the load even with no contact; check its geometry")
+    if status != k.OK:
+        raise SolverError(f"{what}: the sinkage did not converge in 200 iterations")
+    v = out.tolist()
+    return v[0], tuple(v[2:8]), tuple(v[8:16]), tuple(v[16:19]), tuple(v[19:25])  # type: ignore[return-value]
+
+
+def _solve_reference(wheel: _Wheel3D, lowest: NDArray[np.float64], load: float, what: str) -> _State:
+    """:func:`_solve_compiled` from the batched wrench function and SciPy's brentq (the reference)."""
+    surface = wheel.surface
     z = _solve_height(wheel, load, surface, surface - float(lowest.min()), what)
     w = wheel.wrenches([z])[0]
     fx, fy, fz, mx, my, mz = (w[:, k] for k in range(6))
     drive = -my
     sink = surface - (z + lowest)
-    mean_dp, mean_drive = float(fx.mean()), float(drive.mean())
-    power = mean_drive * omega
-    x0, x1, y0, y1, entry, exit_ = _contact_patch(wheel, z, rotations[0])
-    return WheelSteady3DResult(
-        model="rft3d", slip=slip, slip_angle_rad=slip_angle, load_N=load, omega_rad_s=omega,
-        nominal_radius_m=radius, longitudinal_velocity_m_s=vx, lateral_velocity_m_s=vy,
-        sinkage_m=float(sink.mean()), axle_height_m=z - surface, drawbar_pull_N=mean_dp,
-        side_force_N=float(fy.mean()), vertical_force_N=float(fz.mean()), drive_torque_Nm=mean_drive,
-        power_W=power, tractive_efficiency=mean_dp * vx / power if power > 0 else 0.0,
-        aligning_moment_Nm=float(mz.mean()), overturning_moment_Nm=float(mx.mean()),
-        contact_x_min_m=x0, contact_x_max_m=x1, contact_y_min_m=y0, contact_y_max_m=y1,
-        contact_length_m=x1 - x0, contact_width_m=y1 - y0, entry_angle_rad=entry, exit_angle_rad=exit_,
-        drawbar_pull_min_N=float(fx.min()), drawbar_pull_max_N=float(fx.max()),
-        side_force_min_N=float(fy.min()), side_force_max_N=float(fy.max()),
-        drive_torque_min_Nm=float(drive.min()), drive_torque_max_Nm=float(drive.max()),
-        vertical_force_min_N=float(fz.min()), vertical_force_max_N=float(fz.max()),
-        sinkage_min_m=float(sink.min()), sinkage_max_m=float(sink.max()), phase_count=phase_count,
-        period_rad=span, facet_count=mesh.facet_count,
-    )  # fmt: skip
+    means = (float(fx.mean()), float(fy.mean()), float(fz.mean()), float(mx.mean()), float(drive.mean()),
+             float(mz.mean()))  # fmt: skip
+    extremes = tuple(float(f(a)) for a in (fx, fy, drive, fz) for f in (np.min, np.max))
+    patch = _contact_patch(wheel, z, wheel.rotations[0])
+    return z, means, extremes, (float(sink.mean()), float(sink.min()), float(sink.max())), patch  # type: ignore[return-value]
+
+
+# The solver wheel_steady_3d uses (tests swap in _solve_reference).
+_solve_state = _solve_compiled
+
+
+def _coefficients() -> NDArray[np.float64]:
+    from ..rft.rft3d import agarwal2023_coefficients
+
+    return agarwal2023_coefficients()
 
 
 _SWEEP_VALUES = (
