@@ -4,6 +4,12 @@
 ``TERRADYN_THREADS`` sets the same at ``import terradyn``. Before numba is imported the count goes to
 ``NUMBA_NUM_THREADS`` (the size of numba's thread pool, inherited by worker processes); afterwards it
 goes to :func:`numba.set_num_threads` (at most the pool size). numba itself is never imported here.
+
+Idle worker threads sleep instead of spinning: ``import terradyn`` sets ``OMP_WAIT_POLICY=PASSIVE``
+unless it is set already (it takes effect if no OpenMP runtime has started yet). With GNU OpenMP's
+default (spin, then sleep) a parallel kernel on a machine whose other cores are busy waits for a
+worker that has no core: the 3D steady scan took 16 ms on 2 threads against 3 ms on 1; with passive
+waiting 2 threads are never slower than 1 (``benchmarks/bench_startup.py`` prints both).
 """
 
 from __future__ import annotations
@@ -62,7 +68,11 @@ def get_threads() -> int:
 
 
 def apply_environment() -> int | None:
-    """Apply ``TERRADYN_THREADS`` if it is set (called by ``import terradyn``); returns the count."""
+    """Apply ``TERRADYN_THREADS`` if it is set (called by ``import terradyn``); returns the count.
+
+    Also makes idle OpenMP workers sleep (``OMP_WAIT_POLICY=PASSIVE``) unless the variable is set.
+    """
+    os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
     value = os.environ.get(ENVIRONMENT_VARIABLE, "").strip()
     if not value:
         return None
