@@ -18,6 +18,7 @@ __all__ = [
     "SolverError",
     "TerradynError",
     "check_finite",
+    "check_length",
     "check_positive",
     "check_range",
 ]
@@ -45,7 +46,7 @@ class TerradynError(Exception):
 def show_value(value: Any) -> str:
     """A value as a user would have typed it: no Python reprs (paths, NumPy scalars, tuples)."""
     if isinstance(value, os.PathLike):
-        return repr(os.fspath(value))
+        value = os.fspath(value)
     if hasattr(value, "item") and not isinstance(value, str | bytes):
         try:
             value = value.item()
@@ -59,9 +60,8 @@ def show_value(value: Any) -> str:
         return ", ".join(show_value(v) for v in value)
     if hasattr(value, "value") and isinstance(getattr(value, "value", None), str):  # an Enum member
         return repr(value.value)
-    if isinstance(value, str):
-        return repr(value)
-    return str(value)
+    text = repr(value) if isinstance(value, str) else str(value)
+    return text if len(text) <= 90 else text[:60] + "..." + text[-20:]
 
 
 class InputError(TerradynError, ValueError):
@@ -113,6 +113,20 @@ def check_positive(field: str, value: float, *, allow_zero: bool = False) -> flo
     v = check_finite(field, value)
     if v < 0 or (v == 0 and not allow_zero):
         raise InputError(field, value, "a number >= 0" if allow_zero else "a number > 0")
+    return v
+
+
+#: largest body dimension terradyn accepts [m]: far beyond any wheel, leg or plate, and small enough
+#: that discretising it can never overflow
+MAX_LENGTH_M = 100.0
+
+
+def check_length(field: str, value: float, *, allow_zero: bool = False) -> float:
+    """Return ``value`` as float if it is a body dimension in (0, 100] m ([0, 100] with ``allow_zero``)."""
+    v = check_positive(field, value, allow_zero=allow_zero)
+    if v > MAX_LENGTH_M:
+        low = "0 <=" if allow_zero else "0 <"
+        raise InputError(field, value, f"a length with {low} value <= {MAX_LENGTH_M:g} [m]")
     return v
 
 

@@ -183,9 +183,15 @@ def flapped_wheel_performance(
 
         check_positive("omega", omega)
         check_positive("revolutions", revolutions)
-        run = simulate_wheel(wheel, material, mass=load / 9.81, omega=omega,
-                             duration=revolutions * 2 * math.pi / omega, output_every=10,
-                             element_size=element_size)
+        run = simulate_wheel(
+            wheel,
+            material,
+            mass=load / 9.81,
+            omega=omega,
+            duration=revolutions * 2 * math.pi / omega,
+            output_every=10,
+            element_size=element_size,
+        )
         summary = run.steady_summary(revolutions=1.0)
         speed = summary["forward_velocity_m_s"]
         if speed <= 0:
@@ -236,6 +242,14 @@ def optimize_flapped_wheel(
     """
     if metric not in ("velocity", "cost-of-transport"):
         raise InputError("metric", metric, "'velocity' or 'cost-of-transport'")
+    hub_radius = check_positive("hub_radius", hub_radius)
+    width = check_positive("width", width)
+    load = check_positive("load", load)
+    if method not in ("steady", "dynamic"):
+        raise InputError("method", method, "'steady' or 'dynamic'")
+    for name, (low, high) in (("flap_length_ratio", flap_length_ratio), ("flap_angle", flap_angle)):
+        if not (math.isfinite(low) and math.isfinite(high) and low < high):
+            raise InputError(name, (low, high), "finite bounds with low < high")
     key = "velocity_normalised" if metric == "velocity" else "cost_of_transport"
 
     def objective(p: dict[str, float]) -> float:

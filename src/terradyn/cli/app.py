@@ -33,7 +33,7 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
 _HELP = """Locomotion and intrusion in dry granular media: RFT, terramechanics, MPM.
 
 SI units everywhere (angles in degrees on the command line). Exit codes: 0 success, 1 bad input,
-2 usage, 3 solver failure, 4 failed checks, 70 internal error, 130 interrupted (Ctrl-C), 143 terminated.
+2 usage, 3 solver failure, 4 failed checks, 70 a bug in terradyn, 130 interrupted (Ctrl-C), 143 terminated.
 Run 'terradyn COMMAND --help' for a command's options."""
 
 
@@ -275,6 +275,13 @@ def _guarded(args: list[str]) -> int:
     except BrokenPipeError:
         _silence_stdout()
         return 141
+    except OSError as exc:  # the file system refused: a bad path, a full disk, no permission
+        where = f": {exc.filename}" if exc.filename else ""
+        sys.stderr.write(f"terradyn: error: {exc.strerror or type(exc).__name__}{where}\n")
+        return ExitCode.INPUT
+    except MemoryError:
+        sys.stderr.write("terradyn: error: not enough memory for this run (reduce its size)\n")
+        return ExitCode.INPUT
     except Exception as exc:
         if os.environ.get("TERRADYN_DEBUG"):
             raise

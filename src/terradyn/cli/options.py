@@ -8,6 +8,7 @@ field name in an error into the flag the user typed.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any

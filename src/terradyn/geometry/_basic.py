@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..errors import InputError, check_positive
+from ..errors import InputError, check_length
 from ._body import Body
 from ._path import Arc, Line, Segment
 
@@ -25,9 +25,9 @@ class Plate(Body):
     thickness: float = 0.0
 
     def __post_init__(self) -> None:
-        check_positive("length", self.length)
+        check_length("length", self.length)
         self._check_width()
-        check_positive("thickness", self.thickness, allow_zero=True)
+        check_length("thickness", self.thickness, allow_zero=True)
         if self.thickness >= self.length:
             raise InputError("thickness", self.thickness, f"a value below the length {self.length:g} m")
 
@@ -57,7 +57,7 @@ class WheelCircular(Body):
     width: float
 
     def __post_init__(self) -> None:
-        check_positive("radius", self.radius)
+        check_length("radius", self.radius)
         self._check_width()
 
     @property

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InputError, check_positive
+from ..errors import InputError, check_length
 from ._elements import SurfaceElements
 from ._path import Segment, discretize_loops, loop_polygon
 
@@ -82,7 +82,7 @@ class Body(ABC):
         return float(max(np.max(np.hypot(p[:, 0], p[:, 1])) for p in self.outline()))
 
     def _check_width(self) -> None:
-        check_positive("width", self.width)
+        check_length("width", self.width)
 
 
 @lru_cache(maxsize=256)

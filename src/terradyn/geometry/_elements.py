@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InputError, check_positive
+from ..errors import InputError, check_length
 
 __all__ = ["SurfaceElements"]
 
@@ -53,7 +53,7 @@ class SurfaceElements:
             raise InputError("elements.lengths", float(lng.min()), "lengths > 0")
         if n and np.max(np.abs(np.hypot(nrm[:, 0], nrm[:, 1]) - 1.0)) > 1e-9:
             raise InputError("elements.normals", "non-unit vectors", "unit outward normals")
-        check_positive("width", self.width)
+        check_length("width", self.width)
         part = (
             np.zeros(n, dtype=np.int64)
             if self.part is None

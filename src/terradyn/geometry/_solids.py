@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import InputError, check_finite, check_positive
+from ..errors import InputError, check_finite, check_length
 from ._basic import WheelCircular
 from ._body import Body
 from ._path import Arc, Line, Segment
@@ -95,7 +95,7 @@ class Square(Body):
     width: float
 
     def __post_init__(self) -> None:
-        check_positive("side", self.side)
+        check_length("side", self.side)
         self._check_width()
 
     @property
@@ -135,7 +135,7 @@ class HalfCylinder(Body):
     flat_side: FlatSide | str = FlatSide.UP
 
     def __post_init__(self) -> None:
-        check_positive("radius", self.radius)
+        check_length("radius", self.radius)
         self._check_width()
         try:
             side = FlatSide(self.flat_side)
@@ -170,8 +170,8 @@ class Wedge(Body):
     tip_offset: float = 0.0
 
     def __post_init__(self) -> None:
-        check_positive("base", self.base)
-        check_positive("height", self.height)
+        check_length("base", self.base)
+        check_length("height", self.height)
         self._check_width()
         check_finite("tip_offset", self.tip_offset)
 
@@ -194,9 +194,9 @@ class Wedge(Body):
             )
         t = math.tan(0.5 * angle)
         if height is not None:
-            h = check_positive("height", height)
+            h = check_length("height", height)
             return cls(2.0 * h * t, h, width)
-        b = check_positive("base", base)  # type: ignore[arg-type]
+        b = check_length("base", base)  # type: ignore[arg-type]
         return cls(b, 0.5 * b / t, width)
 
     @property

@@ -9,7 +9,7 @@ from numbers import Integral
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InputError, check_finite, check_positive
+from ..errors import InputError, check_finite, check_length
 from ._body import Body
 from ._elements import SurfaceElements
 from ._path import Arc, Line, Segment
@@ -54,11 +54,11 @@ class WheelGrousered(Body):
     grouser_thickness: float
 
     def __post_init__(self) -> None:
-        check_positive("radius", self.radius)
+        check_length("radius", self.radius)
         self._check_width()
         object.__setattr__(self, "grouser_count", _check_count("grouser_count", self.grouser_count))
-        check_positive("grouser_height", self.grouser_height)
-        check_positive("grouser_thickness", self.grouser_thickness)
+        check_length("grouser_height", self.grouser_height)
+        check_length("grouser_thickness", self.grouser_thickness)
         limit = 2.0 * self.radius * math.sin(min(math.pi / self.grouser_count, 0.5 * math.pi))
         if not self.grouser_thickness < limit:
             raise InputError(
@@ -148,14 +148,14 @@ class WheelFlapped(Body):
     flap_thickness: float = 0.0
 
     def __post_init__(self) -> None:
-        check_positive("hub_radius", self.hub_radius)
+        check_length("hub_radius", self.hub_radius)
         self._check_width()
         object.__setattr__(self, "flap_count", _check_count("flap_count", self.flap_count))
-        check_positive("flap_length", self.flap_length)
+        check_length("flap_length", self.flap_length)
         angle = check_finite("flap_angle", self.flap_angle)
         if not abs(angle) < 0.5 * math.pi:
             raise InputError("flap_angle", self.flap_angle, "an angle in (-pi/2, pi/2) rad from radial")
-        check_positive("flap_thickness", self.flap_thickness, allow_zero=True)
+        check_length("flap_thickness", self.flap_thickness, allow_zero=True)
         # Identical straight flaps at one angle never cross away from the hub (their centrelines are
         # all tangent to the circle of radius hub_radius * |sin(flap_angle)|, each turned from the
         # previous by the spacing); so flaps intersect only where their roots overlap on the hub.
@@ -252,9 +252,9 @@ class CLeg(Body):
     sweep: float = math.pi
 
     def __post_init__(self) -> None:
-        check_positive("radius", self.radius)
+        check_length("radius", self.radius)
         self._check_width()
-        check_positive("thickness", self.thickness, allow_zero=True)
+        check_length("thickness", self.thickness, allow_zero=True)
         if not self.thickness < 2.0 * self.radius:
             raise InputError(
                 "thickness", self.thickness, f"a thickness below 2 * radius = {2 * self.radius:g} m"
