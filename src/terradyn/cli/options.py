@@ -129,10 +129,15 @@ def input_file(flag: str, value: str | None) -> Path | None:
     if not value.strip():
         raise InputError(flag, value, "a file path", "the name is empty")
     p = Path(value)
-    if not p.is_file():
-        raise InputError(
-            flag, value, "an existing file", "no such file" if not p.exists() else "it is a folder"
-        )
+    try:
+        exists, is_file = p.exists(), p.is_file()
+        readable = is_file and os.access(p, os.R_OK)
+    except OSError as exc:  # e.g. a name too long for the file system
+        raise InputError(flag, value, "an existing file", exc.strerror or "cannot be accessed") from None
+    if not is_file:
+        raise InputError(flag, value, "an existing file", "it is a folder" if exists else "no such file")
+    if not readable:
+        raise InputError(flag, value, "a file you can read")
     return p
 
 
