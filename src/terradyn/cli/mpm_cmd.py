@@ -376,15 +376,27 @@ def wheel(
     _field_outputs(res, outs.fields, outs.animate)
     if outs.plot is not None:
         _plot_series(res, outs.plot, "wheel")
-    keys = (
-        "sinkage_m",
-        "drawbar_pull_N",
-        "drive_torque_Nm",
-        "force_x_N",
-        "force_z_N",
-        "torque_y_Nm",
-        "slip",
-        "omega_rad_s",
-        "forward_speed_m_s",
-    )
-    emit({k: res.summary[k] for k in keys if k in res.summary}, fmt, outs.out)
+    emit(wheel_record(res.summary), fmt, outs.out)
+
+
+#: the wheel quantities every wheel command reports, under the same keys (SI, unit-suffixed)
+WHEEL_KEYS = (
+    "sinkage_m",
+    "drawbar_pull_N",
+    "drive_torque_Nm",
+    "vertical_force_N",
+    "slip",
+    "load_N",
+    "omega_rad_s",
+    "forward_velocity_m_s",
+    "drawbar_load_N",
+    "applied_torque_Nm",
+)
+
+
+def wheel_record(summary: dict[str, Any]) -> dict[str, Any]:
+    """An MPM wheel summary under the wheel keys shared by every wheel command."""
+    rec = dict(summary)
+    if "force_z_N" in rec:
+        rec["vertical_force_N"] = rec.pop("force_z_N")
+    return {k: rec[k] for k in WHEEL_KEYS if k in rec}

@@ -469,4 +469,13 @@ def _steady_3d(
         omega=omega,
         phase_count=phase_count,
     )
-    return steady3d_record(res)
+    rec = steady3d_record(res)
+    rec.update(
+        {
+            "load_N": float(load),
+            "omega_rad_s": float(omega),
+            "forward_velocity_m_s": float(res.longitudinal_velocity_m_s),
+            "model": "rft3d",
+        }
+    )
+    return rec

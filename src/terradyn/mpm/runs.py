@@ -518,7 +518,7 @@ def _wheel_summary(runner, width, seg, average_fraction, radius, load):
         "force_z_N": float(series["force_z_N"][sel].mean()),
         "load_N": float(load),
         "omega_rad_s": omega,
-        "forward_speed_m_s": vx,
+        "forward_velocity_m_s": vx,
     }
     if omega != 0:
         summary["slip"] = float(1.0 - vx / (omega * radius))

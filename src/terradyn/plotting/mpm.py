@@ -174,11 +174,11 @@ def _wheel_radius(result: Any, radius: float | None) -> float | None:
     if meta.get("nominal_radius_m") is not None:
         return float(meta["nominal_radius_m"])
     s = result.summary
-    if all(k in s for k in ("slip", "forward_speed_m_s", "omega_rad_s")):
+    if all(k in s for k in ("slip", "forward_velocity_m_s", "omega_rad_s")):
         # slip = 1 - V / (omega r): r follows wherever the wheel both spins and moves
         denom = float(s["omega_rad_s"]) * (1.0 - float(s["slip"]))
-        if abs(denom) > 1e-12 and float(s["forward_speed_m_s"]) != 0.0:
-            r = float(s["forward_speed_m_s"]) / denom
+        if abs(denom) > 1e-12 and float(s["forward_velocity_m_s"]) != 0.0:
+            r = float(s["forward_velocity_m_s"]) / denom
             return r if r > 0 else None
     return None
 
