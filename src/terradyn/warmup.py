@@ -239,7 +239,10 @@ def warmup(*, progress: ProgressCallback | None = None, isolated: bool = True) -
         ``compiled`` and ``loaded`` (numba compilations and cache loads it caused).
     """
     if isolated:
-        return _run_isolated(progress)
+        try:
+            return _run_isolated(progress)
+        except OSError:  # no interpreter to start (a frozen application): compile here
+            pass
     return _run_in_process(progress)
 
 
