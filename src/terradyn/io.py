@@ -73,9 +73,6 @@ def _check_parent(field_name: str, text: str, p: Path) -> None:
         raise InputError(field_name, text, "a path in an existing folder", f"{parent} does not exist")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise InputError(field_name, text, "a path in a folder you can write to")
-    for part in p.parts:
-        if len(os.fsencode(part)) > _name_max(parent):
-            raise InputError(field_name, text, f"file and folder names of at most {_name_max(parent)} bytes")
 
 
 def check_output_file(
@@ -88,7 +85,14 @@ def check_output_file(
     if not text.strip():
         raise InputError(field_name, text, f"a {what} path", "the name is empty")
     p = Path(text)
-    if text.endswith(("/", os.sep)) or p.name in ("", ".", "..") or p.is_dir():
+    limit = _name_max(Path("."))
+    if any(len(os.fsencode(part)) > limit for part in p.parts):
+        raise InputError(field_name, text, f"file and folder names of at most {limit} bytes")
+    try:
+        is_dir = p.is_dir()
+    except OSError as exc:
+        raise InputError(field_name, text, f"a {what} path", exc.strerror or "cannot be accessed") from None
+    if text.endswith(("/", os.sep)) or p.name in ("", ".", "..") or is_dir:
         raise InputError(field_name, text, f"a {what} path, not a folder")
     if suffixes is not None and p.suffix.lower() not in suffixes:
         listed = ", ".join(suffixes[:-1]) + (" or " if len(suffixes) > 1 else "") + suffixes[-1]
@@ -103,6 +107,9 @@ def check_output_folder(field_name: str, path: str | Path) -> Path:
     if not text.strip():
         raise InputError(field_name, text, "a folder path", "the name is empty")
     p = Path(text)
+    limit = _name_max(Path("."))
+    if any(len(os.fsencode(part)) > limit for part in p.parts):
+        raise InputError(field_name, text, f"file and folder names of at most {limit} bytes")
     if p.exists():
         if not p.is_dir():
             raise InputError(field_name, text, "a folder path", "it names an existing file")

@@ -15,7 +15,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InputError, check_positive
+from ..errors import InputError, check_length, check_positive
 from .mesh import TriangleMesh
 
 __all__ = [
@@ -146,8 +146,8 @@ def plate(length: float, width: float, *, facet_size: float | None = None) -> Tr
     the leading-edge rule (turn that rule off and a plate counts twice). ``facet_size`` [m] sets the
     quad size (default: 8 quads along the longer side).
     """
-    check_positive("length", length)
-    check_positive("width", width)
+    check_length("length", length)
+    check_length("width", width)
     size = facet_size if facet_size is not None else max(length, width) / 8.0
     nx, ny = _resolution(length, size, 1), _resolution(width, size, 1)
     x = 0.5 * length * _stations(nx)
@@ -168,7 +168,7 @@ def box(length: float, width: float, height: float, *, facet_size: float | None 
     ``facet_size`` [m] sets the quad size (default: 4 quads along the longest side).
     """
     dims = np.array(
-        [check_positive(n, v) for n, v in (("length", length), ("width", width), ("height", height))]
+        [check_length(n, v) for n, v in (("length", length), ("width", width), ("height", height))]
     )
     size = facet_size if facet_size is not None else float(dims.max()) / 4.0
     res = [_resolution(float(d), size, 1) for d in dims]
@@ -257,8 +257,8 @@ def wheel_grousered(
     Resolutions as :func:`wheel_cylinder` (the rim arc between lugs takes its share of
     ``circumferential_resolution``; each lug side and face gets the same spacing).
     """
-    check_positive("radius", radius)
-    check_positive("width", width)
+    check_length("radius", radius)
+    check_length("width", width)
     count = _count("grouser_count", grouser_count, 0)
     n_circ = _count("circumferential_resolution", circumferential_resolution, 8)
     axial = _count("axial_resolution", axial_resolution, 1)
@@ -272,8 +272,8 @@ def wheel_grousered(
         c, s = _circle(n_circ)
         # Angle measured from -z towards +x in the x-z plane.
         return _extrude(np.column_stack((radius * s, -radius * c)), width, axial, rings)
-    check_positive("grouser_height", grouser_height)
-    check_positive("grouser_thickness", grouser_thickness)
+    check_length("grouser_height", grouser_height)
+    check_length("grouser_thickness", grouser_thickness)
     limit = 2.0 * radius * math.sin(min(math.pi / count, 0.5 * math.pi))
     if not grouser_thickness < limit:
         raise InputError(
@@ -298,7 +298,7 @@ def sphere(radius: float, *, subdivisions: int = 3) -> TriangleMesh:
 
     Mirror-symmetric about the three coordinate planes.
     """
-    check_positive("radius", radius)
+    check_length("radius", radius)
     level = _count("subdivisions", subdivisions, 0)
     if level > 8:
         raise InputError("subdivisions", subdivisions, "an integer in [0, 8]", "8 gives 1.3 million facets")
@@ -348,8 +348,8 @@ def cone(
     ``radius`` [m] of the base, ``height`` [m] apex to base. Resolutions: quads around, rings along the
     slant, rings on the base (default as fine as the slant).
     """
-    check_positive("radius", radius)
-    check_positive("height", height)
+    check_length("radius", radius)
+    check_length("height", height)
     n = _count("circumferential_resolution", circumferential_resolution, 3)
     axial = _count("axial_resolution", axial_resolution, 1)
     rings = axial if radial_resolution is None else _count("radial_resolution", radial_resolution, 1)

@@ -1,0 +1,183 @@
+"""Exit codes, interrupts, outputs written as a set, help text: the command line's contract.
+
+The codes are those of :class:`terradyn.errors.ExitCode`, documented in the README.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from terradyn.errors import ExitCode, SolverError
+
+SWEEP = ["wheel", "sweep", "--model", "rft", "--load", "50:200:200", "--slip", "-0.7:0.7:2000"]
+
+
+def test_exit_code_values_are_the_documented_ones():
+    readme = (Path(__file__).parents[2] / "README.md").read_text()
+    for code in ExitCode:
+        assert f"| {int(code)} |" in readme, code
+    assert (ExitCode.OK, ExitCode.INPUT, ExitCode.USAGE, ExitCode.SOLVER) == (0, 1, 2, 3)
+    assert (ExitCode.INTERRUPTED, ExitCode.TERMINATED) == (130, 143)
+
+
+def test_bad_input_usage_and_solver_failure(run_cli):
+    code, _, err = run_cli("wheel", "steady", "--load", "-1", "--slip", "0.2")
+    assert code == 1 and err.startswith("terradyn: error: --load = -1 ")
+    code, _, err = run_cli("wheel", "steady", "--load", "1", "--slip", "0.2", "--nosuch", "1")
+    assert code == 2 and "--nosuch" in err and len(err.strip().splitlines()) == 1
+    code, _, err = run_cli("wheel", "steady", "--load", "1e6", "--slip", "0.2")
+    assert code == 3 and "carries at most" in err and len(err.strip().splitlines()) == 1
+
+
+def test_failing_validation_exits_4_and_keeps_its_report(run_cli, tmp_path, monkeypatch):
+    from terradyn.studies import validation
+    from terradyn.studies.validation import Check
+
+    failing = Check("always fails", measured=1.0, expected=0.0, tolerance=0.1, about="test")
+    monkeypatch.setattr(validation, "run_checks", lambda: [failing])
+    report = tmp_path / "report.json"
+    code, out, err = run_cli("validate", "--format", "json", "--out", str(report))
+    assert code == 4, err
+    assert "always fails" in err and len(err.strip().splitlines()) == 1
+    assert json.loads(report.read_text())[0]["passed"] is False
+    assert json.loads(out)[0]["check"] == "always fails"
+
+
+def test_interrupt_in_process_exits_130_without_outputs(run_cli, tmp_path, monkeypatch):
+    import terradyn.locomotion as loco
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(loco, "force_slip_sweep", interrupted)
+    out = tmp_path / "sweep.csv"
+    code, stdout, err = run_cli(*SWEEP, "--out", str(out), "--plot", str(tmp_path / "p.png"))
+    assert code == 130
+    assert err.strip() == "terradyn: interrupted" and stdout == ""
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_late_failure_leaves_no_output_behind(run_cli, tmp_path, monkeypatch):
+    """--out is computed before the plot fails: neither file may appear (outputs are one set)."""
+    from terradyn.cli import wheel_cmd
+
+    def failing_plot(*args, **kwargs):
+        raise SolverError("the plot could not be drawn")
+
+    monkeypatch.setattr(wheel_cmd, "plot_sweep", failing_plot)
+    existing = tmp_path / "old.csv"
+    existing.write_text("keep me\n")
+    code, stdout, err = run_cli(
+        "wheel", "sweep", "--model", "rft", "--load", "100", "--slip", "0,0.3",
+        "--out", str(existing), "--plot", str(tmp_path / "p.png"),
+    )  # fmt: skip
+    assert code == 3 and "could not be drawn" in err
+    assert stdout == ""
+    assert existing.read_text() == "keep me\n"  # not overwritten
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["old.csv"]
+
+
+def test_outputs_are_checked_before_work(run_cli, tmp_path, monkeypatch):
+    import terradyn.locomotion as loco
+
+    def must_not_run(*args, **kwargs):
+        raise AssertionError("the computation started before the outputs were checked")
+
+    monkeypatch.setattr(loco, "force_slip_sweep", must_not_run)
+    (tmp_path / "folder").mkdir()
+    (tmp_path / "file.txt").write_text("x")
+    cases = [
+        ("--out", ""),
+        ("--out", "."),
+        ("--out", str(tmp_path / "folder")),
+        ("--out", str(tmp_path / "file.txt" / "x.csv")),
+        ("--out", str(tmp_path / ("a" * 300 + ".csv"))),
+        ("--out", str(tmp_path / "x.txt")),
+        ("--plot", str(tmp_path / "x.gif")),
+        ("--plot", str(tmp_path / "missing" / "x.png")),
+    ]
+    for flag, value in cases:
+        code, _, err = run_cli(*SWEEP, flag, value)
+        assert code == 1, (flag, value, err)
+        assert err.startswith(f"terradyn: error: {flag} = ") and len(err.strip().splitlines()) == 1, err
+        assert "PosixPath" not in err
+
+
+def _spawn(args: list[str], folder: Path) -> subprocess.Popen[str]:
+    env = dict(os.environ, PYTHONUNBUFFERED="1")
+    return subprocess.Popen(
+        [sys.executable, "-m", "terradyn", *args],
+        cwd=folder,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+
+@pytest.mark.parametrize(("sig", "expected", "delay"), [
+    (signal.SIGINT, 130, 2.5), (signal.SIGTERM, 143, 2.5), (signal.SIGINT, 130, 0.4),
+])  # fmt: skip
+def test_signals_stop_a_run_cleanly(tmp_path, sig, expected, delay):
+    """Ctrl-C or SIGTERM, during the work or during start-up: one line, the code, no files."""
+    proc = _spawn([*SWEEP, "--out", "sweep.csv"], tmp_path)
+    time.sleep(delay)
+    proc.send_signal(sig)
+    stdout, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == expected, stderr
+    assert "Traceback" not in stderr
+    lines = stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("terradyn: "), stderr
+    assert list(tmp_path.iterdir()) == [], "no partial or temporary output"
+
+
+def _leaves():
+    from terradyn.cli.app import COMMANDS, load_command
+
+    for name in COMMANDS:
+        command = load_command(name)
+        subs = getattr(command, "commands", None) or {None: command}
+        for sub_name, sub in subs.items():
+            yield [name] + ([sub_name] if sub_name else []), sub
+
+
+def test_help_shows_every_unit_and_no_markup(run_cli):
+    import re
+
+    for path, command in _leaves():
+        code, out, err = run_cli(*path, "--help")
+        assert code == 0, (path, err)
+        flat = " ".join(out.split())
+        for p in command.params:
+            text = getattr(p, "help", None) or ""
+            for unit in re.findall(r"\[[^\]]+\]", text):
+                assert unit in flat, (path, p.name, unit)
+        assert "<bool>" not in out, path
+        assert "--install-completion" not in out, path
+
+
+def test_help_lists_every_model_of_wheel_steady(run_cli):
+    _, out, _ = run_cli("wheel", "steady", "--help")
+    for model in ("rft", "drft", "wong-reece", "rft3d"):
+        assert model in out
+
+
+def test_version_and_help_start_fast():
+    """Not a timing test: --version and --help must not import the numerical stack at all."""
+    code = (
+        "import sys; from terradyn.cli.app import main\n"
+        "try:\n    main(sys.argv[1:])\nexcept SystemExit:\n    pass\n"
+        "heavy = [m for m in ('numpy', 'numba', 'scipy', 'matplotlib', 'pandas', 'typer') if m in sys.modules]\n"
+        "print('HEAVY', heavy)\n"
+    )
+    for flag in ("--version", "--help"):
+        res = subprocess.run([sys.executable, "-c", code, flag], capture_output=True, text=True, check=True)
+        assert "HEAVY []" in res.stdout, (flag, res.stdout, res.stderr)
