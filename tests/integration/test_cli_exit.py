@@ -131,7 +131,7 @@ def test_signals_stop_a_run_cleanly(tmp_path, sig, expected, delay):
     proc = _spawn([*SWEEP, "--out", "sweep.csv"], tmp_path)
     time.sleep(delay)
     proc.send_signal(sig)
-    stdout, stderr = proc.communicate(timeout=60)
+    _, stderr = proc.communicate(timeout=60)
     assert proc.returncode == expected, stderr
     assert "Traceback" not in stderr
     lines = stderr.strip().splitlines()
@@ -175,7 +175,8 @@ def test_version_and_help_start_fast():
     code = (
         "import sys; from terradyn.cli.app import main\n"
         "try:\n    main(sys.argv[1:])\nexcept SystemExit:\n    pass\n"
-        "heavy = [m for m in ('numpy', 'numba', 'scipy', 'matplotlib', 'pandas', 'typer') if m in sys.modules]\n"
+        "names = ('numpy', 'numba', 'scipy', 'matplotlib', 'pandas', 'typer')\n"
+        "heavy = [m for m in names if m in sys.modules]\n"
         "print('HEAVY', heavy)\n"
     )
     for flag in ("--version", "--help"):

@@ -194,7 +194,7 @@ def _check_case(args, capsys, tmp_path_factory, *, help_allowed: bool = False) -
                 code = int(exc.code or 0)
     finally:
         os.chdir(cwd)
-    out, err = capsys.readouterr()
+    _, err = capsys.readouterr()
     shown = f"terradyn {' '.join(repr(a) for a in args)} -> {code}: {err.strip()[:400]}"
     assert code in ALLOWED_CODES, shown
     assert "Traceback" not in err and "internal error" not in err, shown
