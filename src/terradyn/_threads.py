@@ -70,10 +70,18 @@ def get_threads() -> int:
 def apply_environment() -> int | None:
     """Apply ``TERRADYN_THREADS`` if it is set (called by ``import terradyn``); returns the count.
 
+    A bad value is ignored with a :class:`RuntimeWarning` naming the variable.
+
     Also makes idle OpenMP workers sleep (``OMP_WAIT_POLICY=PASSIVE``) unless the variable is set.
     """
     os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
     value = os.environ.get(ENVIRONMENT_VARIABLE, "").strip()
     if not value:
         return None
-    return set_threads(_check(value, ENVIRONMENT_VARIABLE))
+    try:
+        return set_threads(_check(value, ENVIRONMENT_VARIABLE))
+    except InputError as exc:  # never fail ``import terradyn`` (the CLI could not report it)
+        import warnings
+
+        warnings.warn(f"{exc}; using numba's default thread count", RuntimeWarning, stacklevel=2)
+        return None
