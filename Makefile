@@ -20,6 +20,7 @@ $(TSTAMP): $(STAMP)
 	touch $@
 
 demo: $(STAMP)
+	$(BIN)/terradyn warmup
 	$(BIN)/terradyn demo --out terradyn-demo
 
 test: $(TSTAMP)

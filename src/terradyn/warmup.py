@@ -203,16 +203,21 @@ def _run_isolated(progress: ProgressCallback | None) -> list[dict[str, Any]]:
     ) as child:
         assert child.stdout is not None and child.stderr is not None
         rows: list[dict[str, Any]] = []
-        for line in child.stdout:
-            if not line.startswith("{"):
-                continue
-            row = json.loads(line)
-            done, total = row.pop("done"), row.pop("total")
-            rows.append(row)
-            if progress is not None:
-                progress(done, total, row["kernel"])
-        err = child.stderr.read()
-        code = child.wait()
+        try:
+            for line in child.stdout:
+                if not line.startswith("{"):
+                    continue
+                row = json.loads(line)
+                done, total = row.pop("done"), row.pop("total")
+                rows.append(row)
+                if progress is not None:
+                    progress(done, total, row["kernel"])
+            err = child.stderr.read()
+            code = child.wait()
+        except BaseException:  # an interrupt: stop the child too, never leave it running
+            child.kill()
+            child.wait()
+            raise
     if code != 0:
         from .errors import SolverError
 

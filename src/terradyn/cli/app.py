@@ -97,11 +97,13 @@ def _root() -> Any:
         ),
     ) -> None:
         if threads is not None:
+            from .. import set_threads
             from ..errors import InputError
 
-            if threads < 1:
-                raise InputError("--threads", threads, "an integer >= 1")
-            os.environ["TERRADYN_THREADS"] = str(threads)
+            try:
+                set_threads(threads)
+            except InputError as exc:
+                raise InputError("--threads", threads, exc.allowed, exc.hint) from None
 
     return typer.main.get_command(root)
 
@@ -169,7 +171,7 @@ def _usage_message(exc: Any) -> str:
 
 
 def _run(args: list[str]) -> int:
-    from typer import _click as click  # type: ignore[attr-defined]
+    from typer import _click as click
     from typer.exceptions import Abort, Exit
 
     from ..errors import ExitCode
@@ -209,6 +211,9 @@ def main(argv: list[str] | None = None) -> None:
         signal.signal(signal.SIGINT, signal.default_int_handler)
     except ValueError:  # not the main thread (embedded use): leave signals alone
         pass
+    # fully vectorise every copy of a kernel this process compiles itself (terradyn.warmup explains why
+    # in-process compiles are otherwise slower than cached code); the CLI runs no user numba code
+    os.environ.setdefault("NUMBA_OPT", "max")
     code = 70
     try:
         code = _guarded(sys.argv[1:] if argv is None else list(argv))

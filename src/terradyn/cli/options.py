@@ -69,6 +69,7 @@ _SYNONYMS = {
     "friction_coefficient": "friction",
     "max_iterations": "iterations",
     "omegas": "omega",
+    "threads": "threads",
     "material": "material",
     "name": "name",
 }
