@@ -352,22 +352,41 @@ def _cell(value: Any) -> str:
     return str(value)
 
 
+def _table_width() -> int:
+    """Columns a table may use: the terminal's width, unlimited when the output is not a terminal."""
+    import shutil
+    import sys
+
+    if not sys.stdout.isatty():
+        return 10**6
+    return shutil.get_terminal_size((120, 24)).columns
+
+
 def _format_table(rows: list[dict[str, Any]], title: str) -> str:
-    """Plain-text table; records (one row, or too wide for 110 columns) print as key/value lines."""
+    """Plain-text table, no cell or header ever cut; a single record, or a table wider than the
+    terminal, prints as ``key  value`` lines."""
     keys: list[str] = []
     for r in rows:
         keys += [k for k in r if k not in keys]
     cells = [[_cell(r.get(k)) for k in keys] for r in rows]
     widths = [max([len(k)] + [len(c[i]) for c in cells]) for i, k in enumerate(keys)]
     lines = [title] if title else []
-    if len(rows) == 1 or sum(widths) + 2 * len(widths) > 110:
+    if len(rows) == 1 or sum(widths) + 2 * len(widths) > _table_width():
         kw = max((len(k) for k in keys), default=0)
         for n, (r, c) in enumerate(zip(rows, cells, strict=True)):
             if len(rows) > 1:
                 lines.append(f"[{n + 1}]")
             lines += [f"  {k.ljust(kw)}  {v}" for k, v in zip(keys, c, strict=True) if r.get(k) is not None]
         return "\n".join(lines) + "\n"
-    lines.append("  ".join(k.rjust(w) for k, w in zip(keys, widths, strict=True)))
+    numeric = [
+        all(isinstance(r.get(k), int | float) and not isinstance(r.get(k), bool) for r in rows) for k in keys
+    ]
+
+    def line(values: list[str]) -> str:
+        parts = [v.rjust(w) if num else v.ljust(w) for v, w, num in zip(values, widths, numeric, strict=True)]
+        return "  ".join(parts).rstrip()
+
+    lines.append(line(keys))
     lines.append("  ".join("-" * w for w in widths))
-    lines += ["  ".join(v.rjust(w) for v, w in zip(c, widths, strict=True)) for c in cells]
+    lines += [line(c) for c in cells]
     return "\n".join(lines) + "\n"

@@ -100,6 +100,11 @@ def _root() -> Any:
             from .. import set_threads
             from ..errors import InputError
 
+            cores = os.cpu_count() or 1
+            if not 1 <= threads <= cores:
+                raise InputError(
+                    "--threads", threads, f"a whole number of threads in [1, {cores}] (the cores here)"
+                )
             try:
                 set_threads(threads)
             except InputError as exc:
