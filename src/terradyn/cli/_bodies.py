@@ -81,6 +81,23 @@ class BodyOptions:
     points_file = typer.Option(None, "--points-file", help="Polygon vertices (CSV x,z or JSON) [m].")
 
 
+def _declared(names: tuple[str, ...], **overrides: Any) -> dict[str, tuple[Any, Any]]:
+    ints = {"grouser_count", "flap_count"}
+    out: dict[str, tuple[Any, Any]] = {}
+    for name in names:
+        ann: Any = str | None if name == "points_file" else int | None if name in ints else float | None
+        out[name] = (ann, overrides.get(name, getattr(BodyOptions, name)))
+    return out
+
+
+#: every size flag of an intruder body (``terradyn intrude``, ``terradyn mpm intrude``)
+BODY_SIZE_FLAGS = _declared(
+    ("length", "thickness", "radius", "side", "base", "height", "tip_offset", "grouser_count",
+     "grouser_height", "grouser_thickness", "hub_radius", "flap_count", "flap_length", "flap_angle",
+     "points_file"),
+)  # fmt: skip
+
+
 def build_body(kind: BodyKind, width: float, **flags: Any) -> geometry.Body:
     """The body of shape ``kind`` from its size flags; a flag the shape does not take is an error."""
     ctor_name, accepted = BODY_FLAGS[kind]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import typer
 
@@ -10,11 +11,23 @@ from .. import materials
 from ..errors import check_finite
 from ..kinematics import Pose2D, Twist2D
 from ..studies.intrusion import intrusion_forces
-from ._bodies import BodyKind, BodyOptions, build_body
+from ._bodies import BODY_SIZE_FLAGS, BodyKind, BodyOptions, build_body
 from ._common import OutputFormat, emit, parse_float_list, save_figure
-from .options import ANGLE, DIRECTION, ELEMENT_SIZE, FORMAT, MATERIAL, OUT, PLOT, out_file, plot_file
+from .options import (
+    ANGLE,
+    DIRECTION,
+    ELEMENT_SIZE,
+    FORMAT,
+    MATERIAL,
+    OUT,
+    PLOT,
+    out_file,
+    plot_file,
+    with_flags,
+)
 
 
+@with_flags("sizes", BODY_SIZE_FLAGS)
 def intrude(
     body: BodyKind = typer.Argument(..., help="Body shape."),
     depth: str = typer.Option(..., "--depth", help="Depth of the body origin [m]: 0.03, list or a:b:n."),
@@ -22,22 +35,8 @@ def intrude(
     direction: float = DIRECTION,
     material: str = MATERIAL,
     element_size: float | None = ELEMENT_SIZE,
-    length: float | None = BodyOptions.length,
     width: float = BodyOptions.width,
-    thickness: float | None = BodyOptions.thickness,
-    radius: float | None = BodyOptions.radius,
-    side: float | None = BodyOptions.side,
-    base: float | None = BodyOptions.base,
-    height: float | None = BodyOptions.height,
-    tip_offset: float | None = BodyOptions.tip_offset,
-    grouser_count: int | None = BodyOptions.grouser_count,
-    grouser_height: float | None = BodyOptions.grouser_height,
-    grouser_thickness: float | None = BodyOptions.grouser_thickness,
-    hub_radius: float | None = BodyOptions.hub_radius,
-    flap_count: int | None = BodyOptions.flap_count,
-    flap_length: float | None = BodyOptions.flap_length,
-    flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: str | None = BodyOptions.points_file,
+    sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = PLOT,
@@ -47,25 +46,7 @@ def intrude(
     With one depth --plot draws the per-element tractions; with several, force against depth."""
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     depths = parse_float_list("--depth", depth)
-    shape = build_body(
-        body,
-        width,
-        length=length,
-        thickness=thickness,
-        radius=radius,
-        side=side,
-        base=base,
-        height=height,
-        tip_offset=tip_offset,
-        grouser_count=grouser_count,
-        grouser_height=grouser_height,
-        grouser_thickness=grouser_thickness,
-        hub_radius=hub_radius,
-        flap_count=flap_count,
-        flap_length=flap_length,
-        flap_angle=flap_angle,
-        points_file=points_file,
-    )
+    shape = build_body(body, width, **sizes)
     mat = materials.get(material)
     theta = math.radians(check_finite("--angle", angle))
     direc = math.radians(check_finite("--direction", direction))

@@ -13,7 +13,7 @@ import typer
 
 from .. import materials
 from ..errors import InputError, check_finite
-from ._bodies import BodyKind, BodyOptions, build_body
+from ._bodies import BODY_SIZE_FLAGS, BodyKind, BodyOptions, build_body
 from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure
 from .options import (
     ANGLE,
@@ -22,12 +22,12 @@ from .options import (
     FORMAT,
     MATERIAL,
     OUT,
-    WHEEL_RADIUS,
     WHEEL_WIDTH,
     animation_file,
     out_file,
     out_folder,
     plot_file,
+    with_flags,
 )
 
 app = typer.Typer(
@@ -161,6 +161,7 @@ def _plot_series(result: Any, path: Path, kind: str) -> None:
 
 
 @app.command("intrude")
+@with_flags("sizes", BODY_SIZE_FLAGS)
 def intrude(
     body: BodyKind = typer.Argument(..., help="Body shape."),
     depth: float = typer.Option(..., "--depth", help="Depth [m] of the reference point for the report."),
@@ -168,27 +169,13 @@ def intrude(
     direction: float = DIRECTION,
     speed: float = typer.Option(0.05, "--speed", help="Intrusion speed [m/s]."),
     material: str = MATERIAL,
-    length: float | None = BodyOptions.length,
     width: float = BodyOptions.width,
-    thickness: float | None = BodyOptions.thickness,
-    radius: float | None = BodyOptions.radius,
-    side: float | None = BodyOptions.side,
-    base: float | None = BodyOptions.base,
-    height: float | None = BodyOptions.height,
-    tip_offset: float | None = BodyOptions.tip_offset,
-    grouser_count: int | None = BodyOptions.grouser_count,
-    grouser_height: float | None = BodyOptions.grouser_height,
-    grouser_thickness: float | None = BodyOptions.grouser_thickness,
-    hub_radius: float | None = BodyOptions.hub_radius,
-    flap_count: int | None = BodyOptions.flap_count,
-    flap_length: float | None = BodyOptions.flap_length,
-    flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: str | None = BodyOptions.points_file,
+    sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
     cell_size: float | None = MPMOptions.cell_size,
     particles_per_cell: int = MPMOptions.ppc,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
-    checkpoint: Path | None = MPMOptions.checkpoint,
+    checkpoint: str | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
     record_interval: float | None = MPMOptions.record_interval,
@@ -205,25 +192,7 @@ def intrude(
     """Push BODY into a settled bed with MPM; force and torque as its reference point passes --depth."""
     from ..mpm import run_intrusion
 
-    shape = build_body(
-        body,
-        width,
-        length=length,
-        thickness=thickness,
-        radius=radius,
-        side=side,
-        base=base,
-        height=height,
-        tip_offset=tip_offset,
-        grouser_count=grouser_count,
-        grouser_height=grouser_height,
-        grouser_thickness=grouser_thickness,
-        hub_radius=hub_radius,
-        flap_count=flap_count,
-        flap_length=flap_length,
-        flap_angle=flap_angle,
-        points_file=points_file,
-    )
+    shape = build_body(body, width, **sizes)
     outs = _Outputs(out=out, plot=plot, series=series, fields=fields, animate=animate, frames=frames,
                     snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip
     speed = check_finite("--speed", speed)
@@ -269,7 +238,14 @@ def _spacing(flag: str, interval: float | None, speed: float) -> float | None:
     return interval * speed
 
 
+def _mpm_wheel_flags() -> Any:
+    from .wheel_cmd import WHEEL_SIZE_FLAGS
+
+    return with_flags("sizes", {k: v for k, v in WHEEL_SIZE_FLAGS.items() if k != "points_file"})
+
+
 @app.command("wheel")
+@_mpm_wheel_flags()
 def wheel(
     material: str = MATERIAL,
     load: float = typer.Option(..., "--load", help="Vertical load W [N]."),
@@ -283,22 +259,14 @@ def wheel(
         0.0, "--drawbar-load", help="Horizontal load on the axle [N] (+ backwards) when x is free."
     ),
     duration: float | None = typer.Option(None, "--duration", help="Driving time [s]."),
-    radius: float | None = WHEEL_RADIUS,
     width: float = WHEEL_WIDTH,
-    shape: str = typer.Option("circular", "--shape", help="circular, grousered or flapped."),
-    grouser_count: int | None = BodyOptions.grouser_count,
-    grouser_height: float | None = BodyOptions.grouser_height,
-    grouser_thickness: float | None = BodyOptions.grouser_thickness,
-    hub_radius: float | None = BodyOptions.hub_radius,
-    flap_count: int | None = BodyOptions.flap_count,
-    flap_length: float | None = BodyOptions.flap_length,
-    flap_angle: float | None = BodyOptions.flap_angle,
-    thickness: float | None = BodyOptions.thickness,
+    shape: str = typer.Option("circular", "--shape", help="Wheel shape: circular, grousered or flapped."),
+    sizes: dict[str, Any] = {},  # the wheel size flags (MPM_WHEEL_SIZE_FLAGS)  # noqa: B006
     cell_size: float | None = MPMOptions.cell_size,
     particles_per_cell: int = MPMOptions.ppc,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
-    checkpoint: Path | None = MPMOptions.checkpoint,
+    checkpoint: str | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
     record_interval: float | None = typer.Option(
@@ -327,25 +295,9 @@ def wheel(
         kind = WheelShape(shape)
     except ValueError:
         raise InputError("--shape", shape, "circular, grousered or flapped") from None
-    body = wheel_body(
-        kind,
-        width,
-        _shape_flags(
-            kind,
-            {
-                "radius": radius,
-                "thickness": thickness,
-                "grouser_count": grouser_count,
-                "grouser_height": grouser_height,
-                "grouser_thickness": grouser_thickness,
-                "hub_radius": hub_radius,
-                "flap_count": flap_count,
-                "flap_length": flap_length,
-                "flap_angle": flap_angle,
-                "points_file": None,
-            },
-        ),
-    )
+    if kind not in (WheelShape.circular, WheelShape.grousered, WheelShape.flapped):
+        raise InputError("--shape", shape, "circular, grousered or flapped")
+    body = wheel_body(kind, width, _shape_flags(kind, {**sizes, "points_file": None}))
     outs = _Outputs(out=out, plot=plot, series=series, fields=fields, animate=animate, frames=frames,
                     snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip
     with _interruptible(outs), fraction_progress("MPM wheel", "s") as bar:

@@ -158,3 +158,39 @@ def animation_file(flag: str, value: str | None) -> Path | None:
                 flag, value, "a .gif, or install the video extra for MP4 (pip install 'terradyn[video]')"
             )
     return p
+
+
+def with_flags(target: str, declared: dict[str, tuple[Any, Any]]) -> Any:
+    """Declare a group of flags once and give them to a command as one dict.
+
+    ``declared`` maps a parameter name to ``(annotation, typer.Option)``. The decorated command has a
+    parameter ``target`` (a dict) in place of which the group's flags appear in its signature (and so
+    in its ``--help``); the wrapper collects their values into that dict."""
+    import functools
+    import inspect
+    import typing
+
+    def decorate(func: Any) -> Any:
+        signature = inspect.signature(func)
+        hints = typing.get_type_hints(func)
+        params: list[inspect.Parameter] = []
+        for p in signature.parameters.values():
+            if p.name == target:
+                params += [
+                    inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=opt, annotation=ann)
+                    for name, (ann, opt) in declared.items()
+                ]
+            else:
+                params.append(p.replace(kind=inspect.Parameter.KEYWORD_ONLY, annotation=hints.get(p.name)))
+
+        @functools.wraps(func)
+        def wrapper(**kwargs: Any) -> Any:
+            kwargs[target] = {name: kwargs.pop(name) for name in declared}
+            return func(**kwargs)
+
+        wrapper.__signature__ = signature.replace(parameters=params)  # type: ignore[attr-defined]
+        wrapper.__annotations__ = {p.name: p.annotation for p in params}
+        del wrapper.__wrapped__
+        return wrapper
+
+    return decorate

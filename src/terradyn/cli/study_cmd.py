@@ -53,11 +53,10 @@ def run(
         outs.folder(folder)
     else:
         folder.mkdir(parents=True, exist_ok=True)
-    out = folder
     for name, table in result.tables.items():
-        atomic_write_text(out / f"{name}.csv", table.to_dataframe().to_csv(index=False))
+        atomic_write_text(folder / f"{name}.csv", table.to_dataframe().to_csv(index=False))
     for name, fig in result.figures.items():
-        save_figure(fig, out / f"{name}.png")
+        save_figure(fig, folder / f"{name}.png")
     emit(result.summary, fmt, None, title=f"study {kind}")
 
 

@@ -14,7 +14,7 @@ from ..errors import InputError, check_finite
 from ..geometry import Body
 from ..locomotion.models import MODEL_NAMES
 from ..materials import Material
-from ._bodies import BodyKind, BodyOptions, build_body
+from ._bodies import BodyKind, _declared, build_body
 from ._common import OutputFormat, atomic_write, emit, parse_float_list, progress, save_figure, spinner
 from .options import (
     ANIMATE,
@@ -34,6 +34,7 @@ from .options import (
     input_file,
     out_file,
     plot_file,
+    with_flags,
 )
 
 app = typer.Typer(
@@ -74,6 +75,15 @@ def model_factory(
     if name.strip().lower() not in (*MODEL_NAMES, "wongreece", "wr"):
         raise InputError("--model", name, f"one of {list(MODEL_NAMES)}")
     return ModelSpec(name, element_size=element_size, c1=c1, c2=c2, exit_angle=exit_angle)
+
+
+#: the size flags of every wheel shape, declared once for all wheel commands
+WHEEL_SIZE_FLAGS = _declared(
+    ("radius", "thickness", "grouser_count", "grouser_height", "grouser_thickness", "hub_radius",
+     "flap_count", "flap_length", "flap_angle", "points_file"),
+    radius=WHEEL_RADIUS,
+)  # fmt: skip
+wheel_flags = with_flags("sizes", WHEEL_SIZE_FLAGS)
 
 
 def wheel_body(shape: WheelShape, width: float, flags: dict[str, Any]) -> Body:
@@ -128,6 +138,7 @@ def _plot_steady(body: Body, mat: Material, res: Any, path: Path, element_size: 
 
 
 @app.command("steady")
+@wheel_flags
 def steady(
     material: str = MATERIAL,
     load: float = LOAD,
@@ -135,17 +146,8 @@ def steady(
     omega: float = OMEGA,
     model: str = typer.Option("rft", "--model", help="Terrain model: rft, drft, wong-reece or rft3d."),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
-    radius: float | None = WHEEL_RADIUS,
     width: float = WHEEL_WIDTH,
-    thickness: float | None = BodyOptions.thickness,
-    grouser_count: int | None = BodyOptions.grouser_count,
-    grouser_height: float | None = BodyOptions.grouser_height,
-    grouser_thickness: float | None = BodyOptions.grouser_thickness,
-    hub_radius: float | None = BodyOptions.hub_radius,
-    flap_count: int | None = BodyOptions.flap_count,
-    flap_length: float | None = BodyOptions.flap_length,
-    flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: str | None = BodyOptions.points_file,
+    sizes: dict[str, Any] = {},  # the wheel size flags (WHEEL_SIZE_FLAGS)  # noqa: B006
     phases: int = PHASES,
     element_size: float | None = ELEMENT_SIZE,
     c1: float = WongReeceOptions.c1,
@@ -163,7 +165,7 @@ def steady(
     from ..locomotion import wheel_steady
 
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
-    flags = _shape_flags(shape, locals())
+    flags = _shape_flags(shape, sizes)
     if model.strip().lower() == "rft3d":
         if plot_path is not None:
             raise InputError("--plot", plot, "a plane model (--model rft)")
@@ -191,6 +193,7 @@ def steady(
 
 
 @app.command("self-propelled")
+@wheel_flags
 def self_propelled(
     material: str = MATERIAL,
     load: float = LOAD,
@@ -198,17 +201,8 @@ def self_propelled(
     omega: float = OMEGA,
     model: str = typer.Option("rft", "--model", help="Terrain model: rft, drft, wong-reece or rft3d."),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
-    radius: float | None = WHEEL_RADIUS,
     width: float = WHEEL_WIDTH,
-    thickness: float | None = BodyOptions.thickness,
-    grouser_count: int | None = BodyOptions.grouser_count,
-    grouser_height: float | None = BodyOptions.grouser_height,
-    grouser_thickness: float | None = BodyOptions.grouser_thickness,
-    hub_radius: float | None = BodyOptions.hub_radius,
-    flap_count: int | None = BodyOptions.flap_count,
-    flap_length: float | None = BodyOptions.flap_length,
-    flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: str | None = BodyOptions.points_file,
+    sizes: dict[str, Any] = {},  # the wheel size flags (WHEEL_SIZE_FLAGS)  # noqa: B006
     phases: int = PHASES,
     element_size: float | None = ELEMENT_SIZE,
     c1: float = WongReeceOptions.c1,
@@ -221,7 +215,7 @@ def self_propelled(
     from ..locomotion import wheel_self_propelled
 
     out_path = out_file("--out", out)
-    body = wheel_body(shape, width, _shape_flags(shape, locals()))
+    body = wheel_body(shape, width, _shape_flags(shape, sizes))
     factory = model_factory(model, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
     res = wheel_self_propelled(
         body,
@@ -235,6 +229,7 @@ def self_propelled(
 
 
 @app.command("sweep")
+@wheel_flags
 def sweep(
     material: str = typer.Option("MS", "--material", help="Media (names or TOML files), comma separated."),
     load: str = typer.Option("80,130,150,190", "--load", help="Loads [N]: a comma list or start:stop:count."),
@@ -242,17 +237,8 @@ def sweep(
     model: str = typer.Option("rft,wong-reece", "--model", help="Models, comma separated."),
     omega: float = OMEGA,
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
-    radius: float | None = WHEEL_RADIUS,
     width: float = WHEEL_WIDTH,
-    thickness: float | None = BodyOptions.thickness,
-    grouser_count: int | None = BodyOptions.grouser_count,
-    grouser_height: float | None = BodyOptions.grouser_height,
-    grouser_thickness: float | None = BodyOptions.grouser_thickness,
-    hub_radius: float | None = BodyOptions.hub_radius,
-    flap_count: int | None = BodyOptions.flap_count,
-    flap_length: float | None = BodyOptions.flap_length,
-    flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: str | None = BodyOptions.points_file,
+    sizes: dict[str, Any] = {},  # the wheel size flags (WHEEL_SIZE_FLAGS)  # noqa: B006
     phases: int = PHASES,
     element_size: float | None = ELEMENT_SIZE,
     c1: float = WongReeceOptions.c1,
@@ -272,7 +258,7 @@ def sweep(
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     if workers is not None and not 1 <= workers <= 256:
         raise InputError("--workers", workers, "an integer in [1, 256]")
-    body = wheel_body(shape, width, _shape_flags(shape, locals()))
+    body = wheel_body(shape, width, _shape_flags(shape, sizes))
     media = [materials.get(m) for m in material.split(",") if m.strip()]
     if not media:
         raise InputError("--material", material, "one or more media, comma separated")
@@ -336,6 +322,7 @@ def _shape_flags(shape: WheelShape, values: dict[str, Any]) -> dict[str, Any]:
 
 
 @app.command("simulate")
+@wheel_flags
 def simulate(
     material: str = MATERIAL,
     mass: float = typer.Option(..., "--mass", help="Wheel (and carriage) mass [kg]."),
@@ -350,17 +337,8 @@ def simulate(
     gravity: float = GRAVITY,
     model: str = typer.Option("rft", "--model", help="Terrain model: rft or drft."),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
-    radius: float | None = WHEEL_RADIUS,
     width: float = WHEEL_WIDTH,
-    thickness: float | None = BodyOptions.thickness,
-    grouser_count: int | None = BodyOptions.grouser_count,
-    grouser_height: float | None = BodyOptions.grouser_height,
-    grouser_thickness: float | None = BodyOptions.grouser_thickness,
-    hub_radius: float | None = BodyOptions.hub_radius,
-    flap_count: int | None = BodyOptions.flap_count,
-    flap_length: float | None = BodyOptions.flap_length,
-    flap_angle: float | None = BodyOptions.flap_angle,
-    points_file: str | None = BodyOptions.points_file,
+    sizes: dict[str, Any] = {},  # the wheel size flags (WHEEL_SIZE_FLAGS)  # noqa: B006
     output_every: int = typer.Option(10, "--output-every", help="Store every N-th step."),
     fmt: OutputFormat = FORMAT,
     out: str | None = typer.Option(None, "--out", help="Time series file (.csv, .json or .nc)."),
@@ -377,7 +355,7 @@ def simulate(
         raise InputError("--model", model, "'rft' or 'drft'")
     if out_path is not None and out_path.suffix == ".nc":
         _require("xarray", "--out", out, "the fields extra for .nc output (pip install 'terradyn[fields]')")
-    body = wheel_body(shape, width, _shape_flags(shape, locals()))
+    body = wheel_body(shape, width, _shape_flags(shape, sizes))
     mat = materials.get(material)
     with spinner("simulating"):
         res = simulate_wheel(
@@ -445,6 +423,8 @@ def _steady_3d(
             raise InputError("--radius", None, "a radius [m] (or --mesh)")
         wheel = wheel_cylinder(radius, width, circumferential_resolution=360, axial_resolution=2)
     elif shape is WheelShape.grousered:
+        if radius is None:
+            raise InputError("--radius", None, "a radius [m] (or --mesh)")
         for flag in ("grouser_count", "grouser_height", "grouser_thickness"):
             if flags.get(flag) is None:
                 raise InputError(f"--{flag.replace('_', '-')}", None, "a value (required for grousered)")
@@ -469,7 +449,7 @@ def _steady_3d(
         omega=omega,
         phase_count=phase_count,
     )
-    rec = steady3d_record(res)
+    rec: dict[str, Any] = dict(steady3d_record(res))
     rec.update(
         {
             "load_N": float(load),
