@@ -10,13 +10,47 @@ a parallel run is identical to a serial one.
 
 from __future__ import annotations
 
+import contextvars
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from typing import Any, TypeVar
 
 from .errors import InputError
 
-__all__ = ["map_items"]
+__all__ = ["map_items", "reporting"]
+
+_REPORT: contextvars.ContextVar[Callable[[int, int], None] | None] = contextvars.ContextVar(
+    "terradyn_progress", default=None
+)
+
+
+@contextmanager
+def reporting(callback: Callable[[int, int], None]) -> Iterator[None]:
+    """Inside the block every :func:`map_items` call reports ``callback(done, total)`` (items of that
+    call) as items finish: how a command shows progress of a study it does not know the inside of."""
+    token = _REPORT.set(callback)
+    try:
+        yield
+    finally:
+        _REPORT.reset(token)
+
+
+def _with_report(total: int, on_done: Callable[[int], None] | None) -> Callable[[int], None] | None:
+    report = _REPORT.get()
+    if report is None:
+        return on_done
+    done = [0]
+    report(0, total)
+
+    def both(n: int) -> None:
+        done[0] += n
+        report(done[0], total)
+        if on_done is not None:
+            on_done(n)
+
+    return both
+
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -31,6 +65,7 @@ def map_items(
     on_done: Callable[[int], None] | None = None,
 ) -> list[R]:
     """Apply ``fn`` to every item; results in item order."""
+    on_done = _with_report(len(items), on_done)
     if scheduler == "serial":
         out = []
         for item in items:
@@ -97,12 +132,22 @@ def _process_pool(
     n = _worker_count(items, workers)
     results: list[Any] = [None] * len(items)
     ctx = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=n, mp_context=ctx) as pool:
+    pool = ProcessPoolExecutor(max_workers=n, mp_context=ctx)
+    try:
         futures = {pool.submit(fn, item): i for i, item in enumerate(items)}
         for fut in as_completed(futures):
             results[futures[fut]] = fut.result()
             if on_done is not None:
                 on_done(1)
+    except BaseException:  # an interrupt or a failed item: stop the workers now, do not wait for them
+        workers_left = list(getattr(pool, "_processes", {}).values())
+        pool.shutdown(wait=False, cancel_futures=True)
+        for proc in workers_left:
+            proc.terminate()
+        for proc in workers_left:
+            proc.join(timeout=5)
+        raise
+    pool.shutdown(wait=True)
     return results
 
 

@@ -11,11 +11,12 @@ def demo(
     out: str = typer.Option("terradyn-demo", "--out", help=OUT_FOLDER_HELP),
 ) -> None:
     """Run the headline study (rigid wheel force-slip, RFT vs Wong-Reece) and write tables and plots."""
+    from ..parallel import reporting
     from ..studies.demo import run_demo
-    from ._common import progress
+    from ._common import fraction_progress
 
     folder = out_folder("--out", out)
     assert folder is not None
-    with progress(1, "terradyn demo") as advance:
-        run_demo(folder)
-        advance(1)
+    with fraction_progress("terradyn demo", "points") as update:
+        with reporting(lambda done, total: update(done, done / max(1, total))):
+            run_demo(folder)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from ..errors import InputError
-from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure, spinner
+from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure
 from .options import FORMAT, OUT, OUT_FOLDER_HELP, QUICK, input_file, out_file, out_folder
 
 app = typer.Typer(
@@ -46,8 +46,11 @@ def run(
     elif study not in STUDIES:
         raise InputError("STUDY", study, f"a study name ({', '.join(sorted(STUDIES))}) or a .toml file")
     overrides = {"material": material} if material else {}
-    with spinner(f"study {study}"):
-        kind, result = run_study(study, quick=quick, overrides=overrides)
+    from ..parallel import reporting
+
+    with fraction_progress(f"study {study}", "points") as update:
+        with reporting(lambda done, total: update(done, done / max(1, total))):
+            kind, result = run_study(study, quick=quick, overrides=overrides)
     outs = current_output_set()
     if outs is not None:
         outs.folder(folder)
