@@ -352,3 +352,127 @@ def wheel_record(summary: dict[str, Any]) -> dict[str, Any]:
     if "force_z_N" in rec:
         rec["vertical_force_N"] = rec.pop("force_z_N")
     return {k: rec[k] for k in WHEEL_KEYS if k in rec}
+
+
+converge_app = typer.Typer(
+    help="One MPM case at three or more cell sizes: observed order, Richardson estimate, error band.",
+    no_args_is_help=True,
+    rich_markup_mode=None,
+)
+app.add_typer(converge_app, name="converge")
+
+CELL_SIZES = typer.Option(
+    ..., "--cell-sizes", help="Three or more cell sizes [m]: a comma list or start:stop:count."
+)
+
+
+def _cell_sizes(text: str) -> list[float]:
+    from ._common import parse_float_list
+
+    sizes = parse_float_list("--cell-sizes", text)
+    if len(set(sizes)) < 3 or min(sizes) <= 0:
+        raise InputError("--cell-sizes", text, "three or more distinct cell sizes > 0 [m]")
+    return sizes
+
+
+def _emit_convergence(res: Any, fmt: OutputFormat, out: Path | None, plot: Path | None, title: str) -> None:
+    if plot is not None:
+        from ..plotting.studies import plot_convergence
+
+        save_figure(plot_convergence(res), plot)
+    if fmt is OutputFormat.json:
+        emit({"runs": res.runs(), "estimates": res.summary()}, fmt, out)
+        return
+    emit(res.runs(), fmt, None, title=f"{title}: runs")
+    emit(res.summary(), fmt, out, title=f"{title}: Richardson estimates")
+
+
+@converge_app.command("intrude")
+@with_flags("sizes", BODY_SIZE_FLAGS)
+def converge_intrude(
+    body: BodyKind = typer.Argument(..., help="Body shape."),
+    depth: float = typer.Option(..., "--depth", help="Depth [m] of the reference point for the report."),
+    cell_sizes: str = CELL_SIZES,
+    angle: float = ANGLE,
+    direction: float = DIRECTION,
+    speed: float = typer.Option(0.05, "--speed", help="Intrusion speed [m/s]."),
+    material: str = MATERIAL,
+    width: float = BodyOptions.width,
+    sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
+    particles_per_cell: int = MPMOptions.ppc,
+    packing: str = MPMOptions.packing,
+    walls: str | None = MPMOptions.walls,
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = typer.Option(None, "--plot", help="Force against cell size (.png/.pdf/.svg/.jpg)."),
+) -> None:
+    """Force and torque of an MPM intrusion at several cell sizes, with their converged estimates."""
+    from ..studies.convergence import converge_intrusion
+
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    cells = _cell_sizes(cell_sizes)
+    shape = build_body(body, width, **sizes)
+    mat = materials.get(material)
+    with fraction_progress("MPM convergence", "runs") as bar:
+        res = converge_intrusion(
+            shape,
+            mat,
+            cell_sizes=cells,
+            quantities=("force_z_N", "force_x_N", "torque_y_Nm"),
+            progress=lambda done, total: bar(done, done / total),
+            depth=depth,
+            direction=math.radians(check_finite("--direction", direction)),
+            angle=math.radians(check_finite("--angle", angle)),
+            speed=speed,
+            particles_per_cell=particles_per_cell,
+            packing=packing,
+            walls=walls,
+        )
+    _emit_convergence(res, fmt, out_path, plot_path, f"MPM {body.value} intrusion")
+
+
+@converge_app.command("wheel")
+@_mpm_wheel_flags()
+def converge_wheel_cmd(
+    load: float = typer.Option(..., "--load", help="Vertical load W [N]."),
+    cell_sizes: str = CELL_SIZES,
+    omega: float | None = typer.Option(None, "--omega", help="Spin rate [rad/s]."),
+    slip: float | None = typer.Option(None, "--slip", help="Imposed slip; omit for self-propelled."),
+    duration: float | None = typer.Option(None, "--duration", help="Driving time [s]."),
+    material: str = MATERIAL,
+    width: float = WHEEL_WIDTH,
+    shape: str = typer.Option("circular", "--shape", help="Wheel shape: circular, grousered or flapped."),
+    sizes: dict[str, Any] = {},  # the wheel size flags (MPM_WHEEL_SIZE_FLAGS)  # noqa: B006
+    particles_per_cell: int = MPMOptions.ppc,
+    packing: str = MPMOptions.packing,
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = typer.Option(None, "--plot", help="Results against cell size (.png/.pdf/.svg/.jpg)."),
+) -> None:
+    """Sinkage, drawbar pull and torque of an MPM wheel at several cell sizes, with converged estimates."""
+    from ..studies.convergence import converge_wheel
+    from .wheel_cmd import WheelShape, _shape_flags, wheel_body
+
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    cells = _cell_sizes(cell_sizes)
+    try:
+        kind = WheelShape(shape)
+    except ValueError:
+        raise InputError("--shape", shape, "circular, grousered or flapped") from None
+    if kind not in (WheelShape.circular, WheelShape.grousered, WheelShape.flapped):
+        raise InputError("--shape", shape, "circular, grousered or flapped")
+    body = wheel_body(kind, width, _shape_flags(kind, {**sizes, "points_file": None}))
+    with fraction_progress("MPM convergence", "runs") as bar:
+        res = converge_wheel(
+            body,
+            materials.get(material),
+            cell_sizes=cells,
+            progress=lambda done, total: bar(done, done / total),
+            load=load,
+            omega=omega,
+            slip=slip,
+            duration=duration,
+            particles_per_cell=particles_per_cell,
+            packing=packing,
+        )
+    _emit_convergence(res, fmt, out_path, plot_path, "MPM wheel")

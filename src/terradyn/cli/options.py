@@ -97,6 +97,8 @@ def flag_for(field: str) -> str:
         return _ACTIVE[key]
     if field in _ACTIVE:
         return _ACTIVE[field]
+    if field + "s" in _ACTIVE:  # e.g. cell_size of one run of --cell-sizes
+        return _ACTIVE[field + "s"]
     return field
 
 

@@ -11,7 +11,7 @@ import numpy as np
 from ..errors import InputError
 from .core import new_figure
 
-__all__ = ["plot_high_speed", "plot_optimization"]
+__all__ = ["plot_convergence", "plot_high_speed", "plot_optimization"]
 
 # Display name, scale from the stored SI value, unit, of the parameters the optimiser varies.
 _PARAMETERS: dict[str, tuple[str, float, str]] = {
@@ -129,4 +129,39 @@ def plot_high_speed(result: Any) -> Any:
     ell = wheel.get("outer_diameter") if isinstance(wheel, dict) else None
     size = rf", $\ell$ = {ell * 1e3:g} mm" if ell else ""
     fig.suptitle(f"Grousered wheel at high spin, {material}{size}".replace(", ,", ","))
+    return fig
+
+
+_UNITS = {"_N": "N", "_Nm": "N m", "_m": "m", "_m_s": "m/s", "_rad_s": "rad/s"}
+
+
+def _quantity_label(name: str) -> str:
+    for suffix, unit in sorted(_UNITS.items(), key=lambda kv: -len(kv[0])):
+        if name.endswith(suffix):
+            return f"{name[: -len(suffix)].replace('_', ' ')} [{unit}]"
+    return f"{name.replace('_', ' ')} [-]"
+
+
+def plot_convergence(result: Any) -> Any:
+    """Each quantity of a :class:`~terradyn.studies.convergence.ConvergenceResult` against cell size
+    [mm], with the Richardson extrapolation at zero cell size and the error band of the finest result.
+    Returns the Figure."""
+    names = list(result.values)
+    fig, axes = new_figure(1, len(names), figsize=(4.6 * len(names), 3.8))
+    h_mm = np.asarray(result.cell_sizes) * 1e3
+    for ax, name in zip(axes[0], names, strict=True):
+        est = result.estimates[name]
+        ax.plot(h_mm, result.values[name], "o-", color="C0", label="MPM")
+        finest = h_mm.min()
+        ax.errorbar([finest], [est.finest], yerr=[est.error_band], color="C3", capsize=4,
+                    label="error band of the finest (GCI)")  # fmt: skip
+        if est.extrapolated is not None:
+            ax.plot([0.0], [est.extrapolated], "*", ms=12, color="C2",
+                    label=f"Richardson, order {est.order:.2g}")  # fmt: skip
+            ax.plot([0.0, finest], [est.extrapolated, est.finest], ":", color="C2")
+        ax.set_xlim(left=0.0)
+        ax.set_xlabel("cell size [mm]")
+        ax.set_ylabel(_quantity_label(name))
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
     return fig

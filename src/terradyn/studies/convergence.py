@@ -1,0 +1,227 @@
+"""Grid convergence of MPM results: one case at three or more resolutions, the observed order and a
+Richardson estimate of the converged value with an error band.
+
+The procedure is the one of Roache's grid convergence index as written up by Celik et al. (2008) for
+unequal refinement ratios: with the three finest resolutions h1 < h2 < h3 and results f1, f2, f3,
+the observed order p solves
+
+    p = | ln|e32 / e21| + q(p) | / ln r21,   q(p) = ln((r21^p - s) / (r32^p - s)),
+
+with e21 = f2 - f1, e32 = f3 - f2, r21 = h2/h1, r32 = h3/h2 and s = sign(e32/e21). The extrapolated
+value is f_ext = (r21^p f1 - f2) / (r21^p - 1) and the error band of the finest result is
+GCI = 1.25 |f1 - f2| / (r21^p - 1) (absolute, in the quantity's unit). Oscillating results (s < 0)
+or an order outside [0.2, 8] get no extrapolation: the band is then the spread of the three results.
+
+References
+----------
+P. J. Roache, *Verification and Validation in Computational Science and Engineering* (1998).
+I. B. Celik et al., "Procedure for estimation and reporting of uncertainty due to discretization in CFD
+applications", J. Fluids Eng. 130, 078001 (2008), doi:10.1115/1.2960953.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..errors import InputError, check_positive
+
+__all__ = [
+    "ConvergenceResult",
+    "RichardsonEstimate",
+    "converge",
+    "converge_intrusion",
+    "converge_wheel",
+    "richardson",
+]
+
+SAFETY_FACTOR = 1.25
+ORDER_RANGE = (0.2, 8.0)
+
+
+@dataclass(frozen=True)
+class RichardsonEstimate:
+    """Richardson extrapolation of one quantity from its three finest resolutions.
+
+    ``order`` [-] observed order (None when the results oscillate); ``extrapolated`` the estimate at
+    zero cell size (None when no extrapolation is trustworthy); ``error_band`` the absolute
+    uncertainty of the finest result (GCI, or the spread when not extrapolated); ``finest`` the
+    finest result; ``monotone`` whether the three results change in one direction; ``note`` why an
+    estimate is missing."""
+
+    order: float | None
+    extrapolated: float | None
+    error_band: float
+    finest: float
+    monotone: bool
+    note: str = ""
+
+    @property
+    def relative_error(self) -> float | None:
+        """|finest - extrapolated| / |extrapolated| [-] (None without an extrapolation)."""
+        if self.extrapolated is None or self.extrapolated == 0:
+            return None
+        return abs(self.finest - self.extrapolated) / abs(self.extrapolated)
+
+
+def richardson(cell_sizes: Sequence[float], values: Sequence[float]) -> RichardsonEstimate:
+    """Observed order, extrapolated value and error band from results at three or more cell sizes.
+
+    ``cell_sizes`` [m] (any order, distinct) and ``values`` (same length, finite). The three finest
+    resolutions are used."""
+    if len(cell_sizes) != len(values) or len(cell_sizes) < 3:
+        raise InputError("cell_sizes", list(cell_sizes), "three or more cell sizes, one value each")
+    pairs = sorted(zip((float(h) for h in cell_sizes), (float(v) for v in values), strict=True))
+    if any(not (math.isfinite(h) and h > 0 and math.isfinite(v)) for h, v in pairs):
+        raise InputError("values", list(values), "finite values at positive cell sizes")
+    (h1, f1), (h2, f2), (h3, f3) = pairs[:3]
+    if not (h1 < h2 < h3):
+        raise InputError("cell_sizes", list(cell_sizes), "distinct cell sizes")
+    e21, e32 = f2 - f1, f3 - f2
+    spread = max(f1, f2, f3) - min(f1, f2, f3)
+    scale = max(abs(f1), abs(f2), abs(f3), 1e-300)
+    if abs(e21) <= 1e-12 * scale and abs(e32) <= 1e-12 * scale:
+        return RichardsonEstimate(None, f1, 0.0, f1, True, "the results do not change with resolution")
+    if abs(e21) <= 1e-12 * scale or e32 * e21 < 0:
+        return RichardsonEstimate(None, None, spread, f1, False, "the results oscillate with resolution")
+    r21, r32 = h2 / h1, h3 / h2
+    s = 1.0
+    ratio = abs(e32 / e21)
+    p = abs(math.log(ratio)) / math.log(r21)
+    for _ in range(200):
+        try:
+            q = math.log((r21**p - s) / (r32**p - s))
+        except (ValueError, ZeroDivisionError, OverflowError):
+            break
+        p_new = abs(math.log(ratio) + q) / math.log(r21)
+        if abs(p_new - p) < 1e-10:
+            p = p_new
+            break
+        p = p_new
+    if not (math.isfinite(p) and ORDER_RANGE[0] <= p <= ORDER_RANGE[1]):
+        note = f"observed order {p:.3g} outside [{ORDER_RANGE[0]:g}, {ORDER_RANGE[1]:g}]: no extrapolation"
+        return RichardsonEstimate(p, None, spread, f1, True, note)
+    rp = r21**p
+    extrapolated = (rp * f1 - f2) / (rp - 1.0)
+    band = SAFETY_FACTOR * abs(f1 - f2) / (rp - 1.0)
+    return RichardsonEstimate(p, extrapolated, band, f1, True)
+
+
+@dataclass(frozen=True)
+class ConvergenceResult:
+    """Results of one case at several cell sizes, and the Richardson estimate of each quantity."""
+
+    cell_sizes: tuple[float, ...]
+    values: Mapping[str, tuple[float, ...]]
+    estimates: Mapping[str, RichardsonEstimate]
+    wall_s: tuple[float, ...]
+    metadata: Mapping[str, Any] = field(default_factory=dict)
+
+    def runs(self) -> list[dict[str, Any]]:
+        """One record per resolution: cell size [m], every quantity, wall time [s]."""
+        rows = []
+        for i, h in enumerate(self.cell_sizes):
+            row: dict[str, Any] = {"cell_size_m": h}
+            row.update({q: v[i] for q, v in self.values.items()})
+            row["wall_s"] = self.wall_s[i]
+            rows.append(row)
+        return rows
+
+    def summary(self) -> list[dict[str, Any]]:
+        """One record per quantity: finest value, observed order, extrapolated value, error band."""
+        out = []
+        for q, est in self.estimates.items():
+            out.append(
+                {
+                    "quantity": q,
+                    "finest": est.finest,
+                    "finest_cell_size_m": min(self.cell_sizes),
+                    "observed_order": est.order,
+                    "extrapolated": est.extrapolated,
+                    "error_band": est.error_band,
+                    "relative_error_finest": est.relative_error,
+                    "monotone": est.monotone,
+                    "note": est.note,
+                }
+            )
+        return out
+
+
+def converge(
+    run: Callable[[float], Mapping[str, float]],
+    cell_sizes: Sequence[float],
+    quantities: Sequence[str],
+    *,
+    progress: Callable[[int, int], None] | None = None,
+    metadata: Mapping[str, Any] | None = None,
+) -> ConvergenceResult:
+    """Run ``run(cell_size)`` (returning a summary mapping) at each cell size, coarsest first, and
+    estimate the converged value of each of ``quantities``."""
+    sizes = sorted({check_positive("cell_sizes", h) for h in cell_sizes}, reverse=True)
+    if len(sizes) < 3:
+        raise InputError("cell_sizes", list(cell_sizes), "three or more distinct cell sizes [m]")
+    if not quantities:
+        raise InputError("quantities", list(quantities), "one or more result names")
+    values: dict[str, list[float]] = {q: [] for q in quantities}
+    wall = []
+    for i, h in enumerate(sizes):
+        if progress is not None:
+            progress(i, len(sizes))
+        t0 = time.perf_counter()
+        summary = run(h)
+        wall.append(time.perf_counter() - t0)
+        for q in quantities:
+            if q not in summary:
+                raise InputError("quantities", q, f"a result of the case ({', '.join(summary)})")
+            values[q].append(float(summary[q]))
+    if progress is not None:
+        progress(len(sizes), len(sizes))
+    estimates = {q: richardson(sizes, v) for q, v in values.items()}
+    return ConvergenceResult(
+        tuple(sizes), {q: tuple(v) for q, v in values.items()}, estimates, tuple(wall), dict(metadata or {})
+    )
+
+
+def converge_intrusion(
+    body: Any,
+    material: Any,
+    *,
+    cell_sizes: Sequence[float],
+    quantities: Sequence[str] = ("force_z_N", "force_x_N"),
+    progress: Callable[[int, int], None] | None = None,
+    **run_options: Any,
+) -> ConvergenceResult:
+    """:func:`terradyn.mpm.run_intrusion` of ``body`` at each cell size (other options as there)."""
+    from ..mpm import run_intrusion
+
+    if "cell_size" in run_options:
+        raise InputError("cell_size", run_options["cell_size"], "cell_sizes instead (three or more)")
+
+    def run(h: float) -> Mapping[str, float]:
+        return run_intrusion(body, material, cell_size=h, **run_options).summary
+
+    return converge(run, cell_sizes, quantities, progress=progress, metadata={"case": "intrusion"})
+
+
+def converge_wheel(
+    wheel: Any,
+    material: Any,
+    *,
+    cell_sizes: Sequence[float],
+    quantities: Sequence[str] = ("sinkage_m", "drawbar_pull_N", "drive_torque_Nm"),
+    progress: Callable[[int, int], None] | None = None,
+    **run_options: Any,
+) -> ConvergenceResult:
+    """:func:`terradyn.mpm.run_wheel` of ``wheel`` at each cell size (other options as there)."""
+    from ..mpm import run_wheel
+
+    if "cell_size" in run_options:
+        raise InputError("cell_size", run_options["cell_size"], "cell_sizes instead (three or more)")
+
+    def run(h: float) -> Mapping[str, float]:
+        return run_wheel(wheel, material, cell_size=h, **run_options).summary
+
+    return converge(run, cell_sizes, quantities, progress=progress, metadata={"case": "wheel"})

@@ -1,0 +1,65 @@
+"""Richardson extrapolation and the grid-convergence driver."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from terradyn.errors import InputError
+from terradyn.studies.convergence import converge, richardson
+
+
+@pytest.mark.parametrize("order", [0.7, 1.0, 2.0])
+@pytest.mark.parametrize("sizes", [(0.01, 0.005, 0.0025), (0.012, 0.008, 0.005), (0.004, 0.01, 0.0065)])
+def test_richardson_recovers_order_and_limit_of_a_power_law(order, sizes):
+    f0, c = 25.0, -300.0
+    est = richardson(sizes, [f0 + c * h**order for h in sizes])
+    assert est.order == pytest.approx(order, rel=1e-6)
+    assert est.extrapolated == pytest.approx(f0, rel=1e-9)
+    assert est.monotone
+    finest = min(sizes)
+    # the band covers the true error of the finest result (safety factor 1.25 > 1)
+    assert est.error_band >= abs(f0 + c * finest**order - f0)
+    assert est.error_band == pytest.approx(1.25 * abs(c) * finest**order, rel=1e-6)
+
+
+def test_richardson_uses_the_three_finest():
+    sizes = [0.04, 0.02, 0.01, 0.005]
+    values = [999.0] + [10 + 2 * h for h in sizes[1:]]  # the coarsest is off the asymptotic range
+    assert richardson(sizes, values).extrapolated == pytest.approx(10.0)
+
+
+def test_oscillating_results_get_no_extrapolation():
+    est = richardson([0.01, 0.005, 0.0025], [10.0, 12.0, 11.0])
+    assert est.extrapolated is None and est.order is None and not est.monotone
+    assert est.error_band == pytest.approx(2.0)
+    assert "oscillate" in est.note
+
+
+def test_implausible_order_is_reported_not_extrapolated():
+    sizes = (0.01, 0.005, 0.0025)
+    est = richardson(sizes, [10.0 + 1e-6, 10.0, 10.0 - 1.0])  # changes grow as the grid is refined
+    assert est.extrapolated is None and "order" in est.note
+    assert est.error_band == pytest.approx(1.000001)
+
+
+def test_converge_runs_coarse_to_fine_and_checks_inputs():
+    seen = []
+
+    def run(h):
+        seen.append(h)
+        return {"f": 3.0 + h, "g": 1.0 - h**2}
+
+    res = converge(run, [0.005, 0.02, 0.01], ["f", "g"])
+    assert seen == [0.02, 0.01, 0.005]
+    assert res.estimates["f"].order == pytest.approx(1.0)
+    assert res.estimates["g"].order == pytest.approx(2.0)
+    assert res.estimates["g"].extrapolated == pytest.approx(1.0)
+    assert [r["cell_size_m"] for r in res.runs()] == [0.02, 0.01, 0.005]
+    assert {r["quantity"] for r in res.summary()} == {"f", "g"}
+    with pytest.raises(InputError, match="three or more"):
+        converge(run, [0.01, 0.005], ["f"])
+    with pytest.raises(InputError, match="quantities"):
+        converge(run, [0.02, 0.01, 0.005], ["nosuch"])
+    assert math.isfinite(res.wall_s[0])
