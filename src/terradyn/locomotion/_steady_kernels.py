@@ -467,7 +467,7 @@ def rft3d_steady_kernel(
         for m in range(4):
             lo[m] = min(lo[m], vals[m])
             hi[m] = max(hi[m], vals[m])
-        sink = surface - (z + lowest[k])
+        sink = max(surface - (z + lowest[k]), 0.0)  # a phase clear of the surface sinks 0
         sink_sum += sink
         sink_lo, sink_hi = min(sink_lo, sink), max(sink_hi, sink)
     for m in range(6):

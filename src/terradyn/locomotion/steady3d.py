@@ -76,7 +76,8 @@ class WheelSteady3DResult:
     model : "rft3d"; slip [-]; slip_angle_rad [rad] (ISO sign, module notes); load_N [N];
     omega_rad_s [rad/s]; nominal_radius_m [m];
     longitudinal_velocity_m_s, lateral_velocity_m_s : axle velocity V_x, V_y [m/s];
-    sinkage_m : depth of the wheel's lowest point below the undisturbed surface [m] (period mean);
+    sinkage_m : depth of the wheel's lowest point below the undisturbed surface [m], 0 for a phase clear
+        of it (period mean);
     axle_height_m : axle height above the surface [m] (negative when buried);
     drawbar_pull_N : F_x [N], + forward; side_force_N : F_y [N], + left; vertical_force_N : F_z [N]
     (equals the load); drive_torque_Nm : -M_y [N m], + driving forward; power_W : drive torque x omega
@@ -496,7 +497,7 @@ def _solve_reference(wheel: _Wheel3D, lowest: NDArray[np.float64], load: float, 
     w = wheel.wrenches([z])[0]
     fx, fy, fz, mx, my, mz = (w[:, k] for k in range(6))
     drive = -my
-    sink = surface - (z + lowest)
+    sink = np.maximum(surface - (z + lowest), 0.0)  # a phase clear of the surface sinks 0
     means = (float(fx.mean()), float(fy.mean()), float(fz.mean()), float(mx.mean()), float(drive.mean()),
              float(mz.mean()))  # fmt: skip
     extremes = tuple(float(f(a)) for a in (fx, fy, drive, fz) for f in (np.min, np.max))
