@@ -151,7 +151,10 @@ def _field_outputs(result: Any, fields: Path | None, animate: Path | None) -> No
         lo = min(float(np.asarray(f["segments"]).reshape(-1, 2)[:, 0].min()) for f in result.frames)
         hi = max(float(np.asarray(f["segments"]).reshape(-1, 2)[:, 0].max()) for f in result.frames)
         win = (lo - 3 * reach, hi + 3 * reach, window[2], window[3])
-        animate_frames(result.frames, animate, window=win)
+        with fraction_progress("rendering the animation", "frames") as update:
+            animate_frames(
+                result.frames, animate, window=win, progress=lambda i, n: update(i + 1, (i + 1) / n)
+            )
 
 
 def _plot_series(result: Any, path: Path, kind: str) -> None:

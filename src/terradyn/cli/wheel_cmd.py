@@ -15,7 +15,16 @@ from ..geometry import Body
 from ..locomotion.models import MODEL_NAMES
 from ..materials import Material
 from ._bodies import BodyKind, _declared, build_body
-from ._common import OutputFormat, atomic_write, emit, parse_float_list, progress, save_figure, spinner
+from ._common import (
+    OutputFormat,
+    atomic_write,
+    emit,
+    fraction_progress,
+    parse_float_list,
+    progress,
+    save_figure,
+    spinner,
+)
 from .options import (
     ANIMATE,
     DRAWBAR_LOAD,
@@ -385,8 +394,8 @@ def simulate(
     if animate_path is not None:
         from ..plotting.animation import animate_body
 
-        with spinner("rendering the animation"):
-            animate_body(body, mat, res, animate_path)
+        with fraction_progress("rendering the animation", "frames") as update:
+            animate_body(body, mat, res, animate_path, progress=lambda i, n: update(i + 1, (i + 1) / n))
     emit(summary, fmt, None)
 
 

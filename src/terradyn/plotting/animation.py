@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import os
-import tempfile
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -19,12 +18,6 @@ __all__ = [
     "plot_time_series",
     "save_animation",
 ]
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 def plot_time_series(result: Any, *, axes: Any = None) -> Any:
@@ -192,8 +185,10 @@ def animate_body(
     *,
     frames: int = 80,
     fps: int = 20,
+    progress: Callable[[int, int], None] | None = None,
 ) -> Path:
-    """Write an animation of ``body`` following the poses of a simulation ``result`` (GIF or MP4).
+    """Write an animation of ``body`` following the poses of a simulation ``result`` (GIF or MP4);
+    ``progress(frame, frames)`` is called as frames are rendered.
 
     Each frame is :func:`plot_body_frame`: outline, free surface, rotation marker, RFT force on every
     loaded element, time stamp. The file is written atomically; MP4 needs the ``imageio-ffmpeg`` extra.
@@ -212,25 +207,27 @@ def animate_body(
     painter = _BodyFrames(body, material, result)
     anim = FuncAnimation(fig, lambda k: painter.draw(ax, int(idx[k])), frames=len(idx))
     try:
-        return save_animation(anim, p, fps=fps, field="--animate")
+        return save_animation(anim, p, fps=fps, field="--animate", progress=progress)
     finally:
         plt.close(fig)
 
 
 def check_animation_path(path: str | Path, field: str = "--animate") -> Path:
-    """``path`` as a Path if it ends in .gif/.mp4 and its folder exists (check before computing)."""
-    p = Path(path)
-    if p.suffix.lower() not in (".gif", ".mp4"):
-        raise InputError(field, str(path), "a file ending in .gif or .mp4")
-    if p.parent and not p.parent.exists():
-        raise InputError(field, str(path), "a path in an existing folder")
-    return p
+    """``path`` as a Path if an animation (.gif/.mp4) can be written there (check before computing)."""
+    from ..io import check_output_file
+
+    return check_output_file(field, path, suffixes=(".gif", ".mp4"), what="animation file")
 
 
-def save_animation(anim: Any, path: str | Path, *, fps: int, field: str) -> Path:
-    """Save a matplotlib animation as GIF (Pillow) or MP4 (imageio-ffmpeg) atomically."""
+def save_animation(
+    anim: Any, path: str | Path, *, fps: int, field: str, progress: Callable[[int, int], None] | None = None
+) -> Path:
+    """Save a matplotlib animation as GIF (Pillow) or MP4 (imageio-ffmpeg) atomically (through
+    :mod:`terradyn.io`, so inside a command it is part of the command's output set)."""
     import matplotlib
     from matplotlib.animation import FFMpegWriter, PillowWriter
+
+    from ..io import atomic_write
 
     p = check_animation_path(path, field)
     suffix = p.suffix.lower()
@@ -246,13 +243,8 @@ def save_animation(anim: Any, path: str | Path, *, fps: int, field: str) -> Path
         except ImportError:
             raise InputError(field, str(path), "a .gif, or install terradyn[video] for MP4") from None
         writer = FFMpegWriter(fps=fps)
-    fd, tmp = tempfile.mkstemp(prefix=f".{p.stem}.", suffix=suffix, dir=p.parent or Path("."))
-    os.close(fd)
-    try:
-        anim.save(tmp, writer=writer)
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, p)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return p
+
+    def _write(tmp: str) -> None:
+        anim.save(tmp, writer=writer, progress_callback=progress)
+
+    return atomic_write(p, _write, suffix=suffix, field_name=field)

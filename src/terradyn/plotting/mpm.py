@@ -125,6 +125,7 @@ def animate_frames(
     quantity: str = "speed",
     fps: int = 12,
     window: tuple[float, float, float, float] | None = None,
+    progress: Any = None,
 ) -> Path:
     """Write the frames of an MPM run (``result.frames``) as a GIF or MP4 of one particle quantity.
 
@@ -161,7 +162,7 @@ def animate_frames(
     draw(0)
     anim = FuncAnimation(fig, draw, frames=len(frames))
     try:
-        return save_animation(anim, path, fps=fps, field="--animate")
+        return save_animation(anim, path, fps=fps, field="--animate", progress=progress)
     finally:
         plt.close(fig)
 
