@@ -22,7 +22,7 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "intrude": ("intrude_cmd", "intrude", "RFT force and torque on a body moving through the medium."),
     "wheel": ("wheel_cmd", "app", "Wheel locomotion: steady solves, sweeps, free rolling (RFT, DRFT, ...)."),
     "mpm": ("mpm_cmd", "app", "Plane-strain MPM continuum runs: intrusion and wheels."),
-    "calibrate": ("calibrate_cmd", "app", "Fit RFT or Bekker parameters to measurements."),
+    "calibrate": ("calibrate_cmd", "app", "Fit RFT, Bekker or MPM parameters to measurements."),
     "study": ("study_cmd", "app", "Reproducible studies (thesis experiments)."),
     "optimize": ("optimize_cmd", "app", "Design optimisation (flapped wheels)."),
     "validate": ("validate_cmd", "validate", "Check the models against invariants and reference values."),

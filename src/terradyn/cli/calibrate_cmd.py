@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import typer
 
 from ..errors import InputError
 from ._common import OutputFormat, emit
-from .options import FORMAT, OUT, input_file, out_file
+from .options import FORMAT, MATERIAL, OUT, input_file, out_file
 
 app = typer.Typer(
-    help="Fit RFT or Bekker parameters to measurements.", no_args_is_help=True, rich_markup_mode=None
+    help="Fit RFT, Bekker or MPM parameters to measurements.", no_args_is_help=True, rich_markup_mode=None
 )
 
 
@@ -117,3 +119,55 @@ def calibrate_bekker(
                 notes=notes,
             )
     emit(rec, fmt, out_path)
+
+
+@app.command("mpm")
+def calibrate_mpm(
+    data: str = typer.Argument(..., help="CSV: depth_m, force_z_N [, force_x_N, angle_deg, direction_deg]."),
+    length: float = typer.Option(..., "--length", help="Plate length [m]."),
+    width: float = typer.Option(..., "--width", help="Plate width (out of plane) [m]."),
+    material: str = MATERIAL,
+    cell_size: float | None = typer.Option(None, "--cell-size", help="MPM grid cell size [m] of the fit."),
+    speed: float = typer.Option(0.05, "--speed", help="Intrusion speed [m/s] of the MPM runs."),
+    tolerance: float = typer.Option(0.01, "--tolerance", help="Accepted |data/model scale - 1| [-]."),
+    name: str = typer.Option("calibrated", "--name", help="Name of the new material."),
+    material_out: str | None = typer.Option(None, "--material-out", help="Write a material TOML (.toml)."),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+) -> None:
+    """Fit the MPM continuum friction mu_s to plate force-depth data (the CSV of 'calibrate rft')."""
+    from .. import materials
+    from ..rft.calibration import read_plate_force_csv
+    from ..studies.mpm_calibration import fit_mpm_friction
+    from ._common import fraction_progress
+
+    data_path = input_file("DATA", data)
+    assert data_path is not None
+    toml_path = out_file("--material-out", material_out, (".toml",))
+    out_path = out_file("--out", out)
+    if not name.strip():
+        raise InputError("--name", name, "a non-empty material name")
+    if not 0 < tolerance < 0.5:
+        raise InputError("--tolerance", tolerance, "a number in (0, 0.5)")
+    base = materials.get(material)
+    plate_data = read_plate_force_csv(data_path)
+    with fraction_progress("fitting mu_s with MPM", "trials") as update:
+        fit = fit_mpm_friction(
+            plate_data, base, plate_length=length, plate_width=width, cell_size=cell_size, speed=speed,
+            tolerance=tolerance, progress=lambda done, total: update(done, done / total),
+        )  # fmt: skip
+    if toml_path is not None:
+        from ..materials import write_material
+
+        notes = (
+            f"MPM continuum friction fitted by terradyn calibrate mpm to {data_path.name}: "
+            f"mu_s = {fit.friction_coefficient:.4g} (data/model scale {fit.scale:.4f}, "
+            f"R^2 = {fit.r_squared:.4f}, "
+            f"{len(fit.trials)} MPM runs per orientation at cell size {cell_size or 'default'}); other "
+            f"parameters from {base.name}."
+        )
+        fitted = fit.material.with_changes(
+            name=name, provenance=dataclasses.replace(base.provenance, notes=notes, table="")
+        )
+        write_material(toml_path, fitted)
+    emit(fit.record(), fmt, out_path)

@@ -14,6 +14,7 @@ from ._material import (
     RFTParameters,
 )
 from ._registry import available, from_dict, get, load
+from ._writer import material_to_toml, write_material
 
 __all__ = [
     "BekkerParameters",
@@ -26,4 +27,6 @@ __all__ = [
     "from_dict",
     "get",
     "load",
+    "material_to_toml",
+    "write_material",
 ]

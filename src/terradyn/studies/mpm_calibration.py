@@ -1,0 +1,217 @@
+"""Calibrate the MPM continuum to a user's plate test: the friction coefficient from force-depth data.
+
+A plate pushed into a cohesionless bed resists in proportion to the bed's shear strength: at fixed
+geometry and density the force-depth curve of the Dunatunga-Kamrin continuum rises monotonically with
+the internal friction coefficient mu_s, and the softened Young's modulus changes it little (docs/mpm.md).
+So one plate test fixes mu_s. :func:`fit_mpm_friction` runs the same intrusion in MPM at trial values
+of mu_s and solves ``k(mu_s) = 1`` for the least-squares scale between data and model,
+
+    k = sum(F_data F_mpm) / sum(F_mpm^2),
+
+by the Illinois variant of regula falsi in ln mu_s (k rises with mu_s). The data are the CSV of
+``terradyn calibrate rft`` (depth_m, force_z_N [, force_x_N, angle_deg, direction_deg]); each distinct
+(angle, direction) is one MPM run per trial. A bed at rest stays elastic only above
+mu_s = sqrt(3)(1 - 2 nu)/(1 + nu): a fit that needs less raises the Poisson ratio to keep that margin,
+and says so.
+
+What a plate test cannot fix: the body-grain friction (needs a shear or drag test with force_x), the
+rate dependence mu(I) (needs several speeds) and the stiffness (quasi-static forces barely depend on
+it); those stay at the base medium's values.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError, SolverError, check_length, check_positive
+from ..materials import Material
+
+__all__ = ["MPMFrictionFit", "fit_mpm_friction", "poisson_ratio_for_stability"]
+
+#: a fitted mu_s keeps this factor above the bed-stability limit
+STABILITY_MARGIN = 1.05
+
+
+def poisson_ratio_for_stability(friction_coefficient: float, margin: float = STABILITY_MARGIN) -> float:
+    """The Poisson ratio nu at which sqrt(3)(1 - 2 nu)/(1 + nu) = mu_s / margin (a resting bed is then
+    elastic with that margin)."""
+    r = check_positive("friction_coefficient", friction_coefficient) / margin
+    return max(0.0, (math.sqrt(3.0) - r) / (2.0 * math.sqrt(3.0) + r))
+
+
+@dataclass(frozen=True)
+class MPMFrictionFit:
+    """Result of :func:`fit_mpm_friction`.
+
+    ``friction_coefficient`` mu_s [-] and the plane-strain friction angle asin(mu_s) [rad] it stands
+    for; ``poisson_ratio`` used (raised only if the stability margin required it); ``scale`` the final
+    least-squares data/model scale (1 at an exact fit); ``rms_residual_N`` [N] and ``r_squared`` of the
+    fitted curve; ``trials`` (mu_s, scale) of every MPM evaluation; ``material`` the base medium with
+    the fitted continuum; ``cell_size`` [m] of the runs."""
+
+    friction_coefficient: float
+    friction_angle: float
+    poisson_ratio: float
+    scale: float
+    rms_residual_N: float
+    r_squared: float
+    trials: tuple[tuple[float, float], ...]
+    material: Material
+    cell_size: float | None
+    converged: bool
+
+    def record(self) -> dict[str, Any]:
+        return {
+            "friction_coefficient": self.friction_coefficient,
+            "friction_angle_deg": math.degrees(self.friction_angle),
+            "poisson_ratio": self.poisson_ratio,
+            "scale_data_over_model": self.scale,
+            "rms_residual_N": self.rms_residual_N,
+            "r_squared": self.r_squared,
+            "mpm_trials": len(self.trials),
+            "cell_size_m": self.cell_size,
+            "converged": self.converged,
+        }
+
+
+def _groups(data: Any) -> list[tuple[float, float, np.ndarray]]:
+    """(angle [rad], direction [rad], row indices) of each distinct plate orientation and motion."""
+    angle = np.radians(np.asarray(data.angle_deg, dtype=float))
+    direction = np.radians(np.asarray(data.direction_deg, dtype=float))
+    keys = sorted({(round(a, 9), round(d, 9)) for a, d in zip(angle, direction, strict=True)})
+    return [
+        (a, d, np.flatnonzero((np.round(angle, 9) == a) & (np.round(direction, 9) == d))) for a, d in keys
+    ]
+
+
+def fit_mpm_friction(
+    data: Any,
+    material: Material,
+    *,
+    plate_length: float,
+    plate_width: float,
+    cell_size: float | None = None,
+    bounds: tuple[float, float] = (0.2, 1.5),
+    tolerance: float = 0.01,
+    max_trials: int = 10,
+    speed: float = 0.05,
+    progress: Callable[[int, int], None] | None = None,
+    run: Callable[..., Any] | None = None,
+) -> MPMFrictionFit:
+    """Fit the continuum friction mu_s of ``material`` to plate force-depth ``data``.
+
+    ``data`` is a :class:`terradyn.rft.calibration.PlateData` (see :func:`read_plate_force_csv`),
+    ``plate_length``, ``plate_width`` [m] the plate; the MPM runs use ``cell_size`` [m] (default: the
+    solver's) and ``speed`` [m/s]. Stops when the data/model scale is within ``tolerance`` of 1.
+    ``run`` replaces :func:`terradyn.mpm.run_intrusion` (tests)."""
+    from ..geometry import Plate
+
+    if material.continuum is None:
+        raise InputError("material", material.name, "a medium with a [continuum] table (MPM parameters)")
+    plate = Plate(
+        length=check_length("plate_length", plate_length), width=check_length("plate_width", plate_width)
+    )
+    low, high = (check_positive("bounds", b) for b in bounds)
+    if not low < high:
+        raise InputError("bounds", bounds, "low < high")
+    tolerance = check_positive("tolerance", tolerance)
+    if run is None:
+        from ..mpm import run_intrusion
+
+        run = run_intrusion
+    runner: Callable[..., Any] = run
+    depth = np.asarray(data.depth_m, dtype=float)
+    force = np.asarray(data.force_z_N, dtype=float)
+    if np.any(depth <= 0):
+        raise InputError("depth_m", float(depth.min()), "depths > 0 [m] (below the free surface)")
+    if not np.any(np.abs(force) > 0):
+        raise InputError("force_z_N", 0.0, "some non-zero forces")
+    groups = _groups(data)
+    base = material.continuum
+    trials: list[tuple[float, float]] = []
+
+    def model_at(mu: float) -> tuple[np.ndarray, float]:
+        nu = max(base.poisson_ratio, poisson_ratio_for_stability(mu))
+        predicted = np.zeros_like(force)
+        for angle, direction, rows in groups:
+            res = runner(
+                plate, material, depth=float(depth[rows].max()), angle=angle, direction=direction,
+                speed=speed, cell_size=cell_size, friction_coefficient=mu, poisson_ratio=nu,
+            )  # fmt: skip
+            df = res.to_dataframe()
+            order = np.argsort(df["depth_m"].to_numpy())
+            d_run = df["depth_m"].to_numpy()[order]
+            f_run = df["force_z_N"].to_numpy()[order]
+            if depth[rows].max() > d_run.max() + 1e-9:
+                raise SolverError(
+                    f"the MPM run reached {d_run.max():.4g} m, short of the data's {depth[rows].max():.4g} m"
+                )
+            predicted[rows] = np.interp(depth[rows], d_run, f_run)
+        denom = float(predicted @ predicted)
+        if denom <= 0:
+            raise SolverError(f"the MPM plate carries no force at mu_s = {mu:.4g}")
+        k = float(force @ predicted) / denom
+        trials.append((mu, k))
+        if progress is not None:
+            progress(len(trials), max_trials)
+        return predicted, k
+
+    mu0 = min(max(base.friction_coefficient, low), high)
+    best_mu, (best_pred, best_k) = mu0, model_at(mu0)
+    converged = abs(best_k - 1.0) <= tolerance
+    if not converged:
+        # bracket: k rises with mu_s; step by the data/model ratio (force roughly ~ mu_s^2)
+        a, ka = mu0, best_k
+        b = min(max(mu0 * best_k**0.5, low), high)
+        pb, kb = model_at(b)
+        while (ka - 1.0) * (kb - 1.0) > 0 and len(trials) < max_trials:
+            if b in (low, high):
+                raise SolverError(
+                    f"no mu_s in [{low:g}, {high:g}] fits the data: the data/model scale is {kb:.3g} "
+                    f"at mu_s = {b:.4g}"
+                )
+            a, ka = b, kb
+            b = min(max(b * kb**0.5, low), high)
+            pb, kb = model_at(b)
+        best_mu, best_pred, best_k = b, pb, kb
+        ga, gb = math.log(ka), math.log(kb)
+        la, lb = math.log(a), math.log(b)
+        while abs(best_k - 1.0) > tolerance and len(trials) < max_trials:
+            lc = lb - gb * (lb - la) / (gb - ga)
+            pc, kc = model_at(math.exp(lc))
+            gc = math.log(kc)
+            best_mu, best_pred, best_k = math.exp(lc), pc, kc
+            if gc * gb < 0:
+                la, ga = lb, gb
+            else:
+                ga *= 0.5  # Illinois: halve the value at the end that stays
+            lb, gb = lc, gc
+        converged = abs(best_k - 1.0) <= tolerance
+    residual = force - best_pred
+    ss_tot = float(np.sum((force - force.mean()) ** 2))
+    r2 = 1.0 - float(residual @ residual) / ss_tot if ss_tot > 0 else 1.0
+    nu = max(base.poisson_ratio, poisson_ratio_for_stability(best_mu))
+    mu2 = max(base.friction_coefficient_2 - base.friction_coefficient + best_mu, best_mu)
+    fitted = material.with_changes(
+        continuum=dataclasses.replace(
+            base, friction_coefficient=best_mu, friction_coefficient_2=mu2, poisson_ratio=nu
+        )
+    )
+    return MPMFrictionFit(
+        friction_coefficient=best_mu,
+        friction_angle=math.asin(min(best_mu, 1.0)),
+        poisson_ratio=nu,
+        scale=best_k,
+        rms_residual_N=float(np.sqrt(np.mean(residual**2))),
+        r_squared=r2,
+        trials=tuple(trials),
+        material=fitted,
+        cell_size=cell_size,
+        converged=converged,
+    )
