@@ -182,3 +182,40 @@ def test_version_and_help_start_fast():
     for flag in ("--version", "--help"):
         res = subprocess.run([sys.executable, "-c", code, flag], capture_output=True, text=True, check=True)
         assert "HEAVY []" in res.stdout, (flag, res.stdout, res.stderr)
+
+
+RETIRED = ("--reduced", "--models", "--plate-length", "--plate-width", "--record-spacing", "--snapshot-spacing")
+
+
+def test_one_option_vocabulary():
+    """Shared flags: one default medium and wheel, the same help and defaults, no retired spellings."""
+    seen: dict[str, dict[str, object]] = {}
+    for path, command in _leaves():
+        for p in command.params:
+            opts = [o for o in getattr(p, "opts", []) if o.startswith("--")]
+            if not opts:
+                continue
+            flag = opts[0]
+            assert flag not in RETIRED, (path, flag)
+            # the high-speed study is the poppy-seed experiment of Agarwal et al. 2021 (its help says so)
+            if flag == "--material" and p.default is not None and path != ["study", "high-speed"]:
+                assert p.default == "MS", (path, p.default)
+            if flag == "--format":
+                seen.setdefault(flag, {})[" ".join(path)] = (p.default, p.help)
+    wheel_commands = [(path, c) for path, c in _leaves() if path[:1] == ["wheel"] or path == ["mpm", "wheel"]]
+    for path, command in wheel_commands:
+        params = {p.name: p for p in command.params}
+        assert params["radius"].default == 0.13 and params["width"].default == 0.16, path
+    assert len(set(seen["--format"].values())) == 1
+
+
+def test_checkpoint_flags_are_checked_before_the_run(run_cli, tmp_path):
+    base = ["mpm", "intrude", "plate", "--length", "0.06", "--depth", "0.03"]
+    existing = tmp_path / "run.npz"
+    existing.write_bytes(b"not a checkpoint")
+    code, _, err = run_cli(*base, "--checkpoint", str(existing))
+    assert code == 1 and "--resume" in err and existing.read_bytes() == b"not a checkpoint"
+    code, _, err = run_cli(*base, "--checkpoint", str(tmp_path / "missing.npz"), "--resume")
+    assert code == 1 and "--checkpoint" in err and "no such file" in err
+    code, _, err = run_cli(*base, "--checkpoint", str(tmp_path / "run.txt"))
+    assert code == 1 and ".npz" in err

@@ -65,7 +65,11 @@ def run(
 
 @app.command("high-speed")
 def high_speed(
-    material: str = typer.Option("poppy-cp", "--material", help="Medium with a critical density."),
+    material: str = typer.Option(
+        "poppy-cp",
+        "--material",
+        help="Medium with a critical density (default: the poppy seeds of the thesis high-speed study).",
+    ),
     model: str = typer.Option("rft,drft", "--model", help="Terrain models, comma separated (rft, drft)."),
     omega: str | None = typer.Option(None, "--omega", help="Spin rates [rad/s]: list or start:stop:count."),
     gravity: float = typer.Option(9.81, "--gravity", help="Gravity [m/s^2]."),
