@@ -156,10 +156,10 @@ def plot_convergence(result: Any) -> Any:
         ax.errorbar([finest], [est.finest], yerr=[est.error_band], color="C3", capsize=4,
                     label="error band of the finest (GCI)")  # fmt: skip
         if est.extrapolated is not None:
-            ax.plot([0.0], [est.extrapolated], "*", ms=12, color="C2",
-                    label=f"Richardson, order {est.order:.2g}")  # fmt: skip
+            order = "" if est.order is None else f", order {est.order:.2g}"
+            ax.plot([0.0], [est.extrapolated], "*", ms=12, color="C2", label=f"Richardson{order}")
             ax.plot([0.0, finest], [est.extrapolated, est.finest], ":", color="C2")
-        ax.set_xlim(left=0.0)
+        ax.set_xlim(left=-0.04 * float(h_mm.max()))
         ax.set_xlabel("cell size [mm]")
         ax.set_ylabel(_quantity_label(name))
         ax.grid(True, alpha=0.3)
