@@ -11,7 +11,9 @@ from terradyn.studies.convergence import converge, richardson
 
 
 @pytest.mark.parametrize("order", [0.7, 1.0, 2.0])
-@pytest.mark.parametrize("sizes", [(0.01, 0.005, 0.0025), (0.012, 0.008, 0.005), (0.004, 0.01, 0.0065)])
+@pytest.mark.parametrize(
+    "sizes", [(0.01, 0.005, 0.0025), (0.012, 0.008, 0.005), (0.004, 0.01, 0.0065), (0.01, 0.0075, 0.005)]
+)
 def test_richardson_recovers_order_and_limit_of_a_power_law(order, sizes):
     f0, c = 25.0, -300.0
     est = richardson(sizes, [f0 + c * h**order for h in sizes])

@@ -91,6 +91,8 @@ def richardson(cell_sizes: Sequence[float], values: Sequence[float]) -> Richards
     s = 1.0
     ratio = abs(e32 / e21)
     p = abs(math.log(ratio)) / math.log(r21)
+    if p < 0.05:  # equal changes on unequal steps: start the fixed point at first order
+        p = 1.0
     for _ in range(200):
         try:
             q = math.log((r21**p - s) / (r32**p - s))
