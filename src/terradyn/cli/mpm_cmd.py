@@ -479,3 +479,45 @@ def converge_wheel_cmd(
             packing=packing,
         )
     _emit_convergence(res, fmt, out_path, plot_path, "MPM wheel")
+
+
+verify_app = typer.Typer(
+    help="MPM against plasticity theory (no RFT): bearing capacity of a rigid strip footing.",
+    no_args_is_help=True,
+    rich_markup_mode=None,
+)
+app.add_typer(verify_app, name="verify")
+
+
+@verify_app.command("strip-footing")
+def verify_strip_footing(
+    phi: float = typer.Option(..., "--phi", help="Friction angle phi [deg] (continuum mu_s = sin phi)."),
+    base: str = typer.Option("rough", "--base", help="Footing base: rough (no slip) or smooth."),
+    width: float = typer.Option(0.04, "--footing-width", help="Footing width B [m]."),
+    material: str = MATERIAL,
+    cell_size: float | None = typer.Option(None, "--cell-size", help="Grid cell size [m] (default B/20)."),
+    settlement_ratio: float = typer.Option(
+        0.1, "--settlement-ratio", help="Settlement s/B [-] about which the collapse pressure is read."
+    ),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = typer.Option(
+        None, "--plot", help="Bearing pressure against settlement (.png/.pdf/.svg/.jpg)."
+    ),
+) -> None:
+    """N_gamma of a rigid strip footing from MPM beside the plasticity-theory value for isochoric flow."""
+    from ..studies.mpm_verification import strip_footing
+
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    if base not in ("rough", "smooth"):
+        raise InputError("--base", base, "rough or smooth")
+    with fraction_progress("MPM strip footing", "s") as bar:
+        res = strip_footing(
+            phi, base, material=material, width=width, cell_size=cell_size,
+            settlement_ratio=settlement_ratio, progress=bar,
+        )  # fmt: skip
+    if plot_path is not None:
+        from ..plotting.studies import plot_footing
+
+        save_figure(plot_footing(res), plot_path)
+    emit(res.record(), fmt, out_path, title=f"strip footing, phi = {phi:g} deg, {base} base")

@@ -70,6 +70,7 @@ _SYNONYMS = {
     "max_iterations": "iterations",
     "omegas": "omega",
     "threads": "threads",
+    "friction_angle_deg": "phi",
     "material": "material",
     "name": "name",
 }

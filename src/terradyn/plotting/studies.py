@@ -11,7 +11,7 @@ import numpy as np
 from ..errors import InputError
 from .core import new_figure
 
-__all__ = ["plot_convergence", "plot_high_speed", "plot_optimization"]
+__all__ = ["plot_convergence", "plot_footing", "plot_high_speed", "plot_optimization"]
 
 # Display name, scale from the stored SI value, unit, of the parameters the optimiser varies.
 _PARAMETERS: dict[str, tuple[str, float, str]] = {
@@ -164,4 +164,33 @@ def plot_convergence(result: Any) -> Any:
         ax.set_ylabel(_quantity_label(name))
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
+    return fig
+
+
+def plot_footing(result: Any) -> Any:
+    """Bearing pressure [kPa] against settlement / width of an MPM strip footing
+    (:class:`~terradyn.studies.mpm_verification.StripFootingResult`), with the fitted embedment line,
+    its intercept (the collapse pressure of the MPM) and the theory value 0.5 gamma B N_gamma."""
+    fig, axes = new_figure(1, 1, figsize=(6.4, 4.2))
+    ax = axes[0, 0]
+    s, q = result.curve
+    b, gamma = result.width_m, result.unit_weight_N_m3
+    ax.plot(s / b, q / 1e3, color="C0", lw=1.2, label=f"MPM, cell {result.cell_size_m * 1e3:.3g} mm")
+    q_u = 0.5 * gamma * b * result.N_gamma_mpm
+    x = np.array([0.0, 1.5 * result.settlement_m / b])
+    ax.plot(x, (q_u + gamma * result.embedment_slope * x * b) / 1e3, "--", color="C1",
+            label=rf"fit, intercept: $N_\gamma$ = {result.N_gamma_mpm:.3g}")  # fmt: skip
+    ref = result.reference.get("N_gamma_reference")
+    if ref:
+        ax.axhline(0.5 * gamma * b * float(ref) / 1e3, color="C2", ls=":",
+                   label=rf"theory (isochoric): $N_\gamma$ = {float(ref):.3g}")  # fmt: skip
+    ax.set_xlabel("settlement / footing width [-]")
+    ax.set_ylabel("bearing pressure [kPa]")
+    ax.set_xlim(left=0.0)
+    ax.set_ylim(bottom=0.0)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(
+        rf"rigid strip footing, $\phi$ = {result.friction_angle_deg:g} deg, {result.base.value} base"
+    )
     return fig

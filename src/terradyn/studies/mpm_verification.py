@@ -1,0 +1,206 @@
+"""MPM against plasticity theory, no RFT involved: the rigid strip footing on weighted sand.
+
+A rigid strip footing of width B is pushed into a cohesionless bed of unit weight gamma = rho g. Rigid-
+plastic theory gives the collapse pressure of a surface footing as q_u = 0.5 gamma B N_gamma(phi) with a
+bearing factor from the method of characteristics (exact values for associated flow: Martin 2005; for
+isochoric, non-associated flow the published finite-element values of Frydman & Burd 1997 and Loukidis
+& Salgado 2009 are lower). The MPM continuum (Dunatunga-Kamrin, isochoric, mu_s = sin phi in plane
+strain) is a non-associated Mohr-Coulomb material of friction angle phi and dilatancy 0, so its N_gamma
+is compared with the non-associated value.
+
+How N_gamma is read from an MPM run: the footing moves down at constant speed; the bearing pressure
+q(s) = F_z / (B w) is recorded against settlement s. An elastic-plastic bed has no sharp collapse, and
+once the mechanism has formed the footing is embedded by s, which adds a surcharge term that grows
+linearly, q ~ q_u + gamma N_q s. So the collapse pressure q_u is the intercept at s = 0 of a straight
+line fitted to q(s) over s/B in [0.5, 1.5] x ``settlement_ratio`` (default 0.1, i.e. 0.05-0.15 B, after
+the elastic part and before deep embedment), and
+
+    N_gamma_mpm = 2 q_u / (gamma B).
+
+The slope of that line over gamma is reported beside N_q of the reduced angle phi* (tan phi* = sin phi,
+Davis 1968, the isochoric equivalent) as a check that the linear part is the embedment term. The
+settlement must span a few cells: the default cell size is B/20.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from enum import Enum
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError, SolverError, check_length, check_positive, check_range
+
+__all__ = ["FootingBase", "StripFootingResult", "strip_footing"]
+
+
+class FootingBase(str, Enum):
+    """Footing-soil interface: ``rough`` (no slip) or ``smooth`` (frictionless)."""
+
+    rough = "rough"
+    smooth = "smooth"
+
+
+#: body-grain friction standing for a rough base (sticking: far above tan(phi) = 0.67 of 34 deg sand;
+#: the largest the MPM model accepts)
+ROUGH_FRICTION = 2.0
+
+
+@dataclass(frozen=True)
+class StripFootingResult:
+    """One MPM strip-footing run and its bearing factor.
+
+    ``N_gamma_mpm`` [-] = 2 q_u / (gamma B) from the intercept q_u, ``N_gamma_raw`` = 2 q / (gamma B)
+    at the reading settlement ``settlement_m`` (pressure ``pressure_Pa``), ``embedment_slope`` the
+    fitted dq/ds over gamma [-] and ``N_q_reduced`` N_q(phi*) to compare it with, ``unit_weight_N_m3`` gamma,
+    ``reference`` (dict from :func:`terradyn.plasticity.strip_footing_reference`, or empty when that
+    package has no value), ``curve`` (settlement [m], pressure [Pa]) of the whole run."""
+
+    friction_angle_deg: float
+    base: FootingBase
+    width_m: float
+    cell_size_m: float
+    N_gamma_mpm: float
+    N_gamma_raw: float
+    pressure_Pa: float
+    settlement_m: float
+    embedment_slope: float
+    N_q_reduced: float
+    unit_weight_N_m3: float
+    reference: dict[str, Any]
+    curve: tuple[np.ndarray, np.ndarray]
+
+    def record(self) -> dict[str, Any]:
+        rec: dict[str, Any] = {
+            "N_gamma_mpm": self.N_gamma_mpm,
+            "N_gamma_reference": self.reference.get("N_gamma_reference"),
+            "reference": self.reference.get("reference", ""),
+            "N_gamma_raw": self.N_gamma_raw,
+            "friction_angle_deg": self.friction_angle_deg,
+            "base": self.base.value,
+            "width_m": self.width_m,
+            "cell_size_m": self.cell_size_m,
+            "pressure_Pa": self.pressure_Pa,
+            "settlement_m": self.settlement_m,
+            "embedment_slope": self.embedment_slope,
+            "N_q_reduced": self.N_q_reduced,
+        }
+        ref = rec["N_gamma_reference"]
+        if ref:
+            rec["ratio_mpm_to_reference"] = self.N_gamma_mpm / float(ref)
+        if "N_gamma_associated" in self.reference:
+            rec["N_gamma_associated"] = self.reference["N_gamma_associated"]
+        return rec
+
+
+def _reference(phi_deg: float, base: FootingBase) -> dict[str, Any]:
+    try:
+        from ..plasticity import strip_footing_reference
+    except ImportError:  # pragma: no cover - the theory package is part of terradyn
+        return {}
+    try:
+        return dict(strip_footing_reference(phi_deg, base.value))
+    except InputError:
+        return {}
+
+
+def _nq_reduced(phi: float) -> float:
+    """Reissner's N_q at the Davis (1968) isochoric angle tan phi* = sin phi."""
+    phi_star = math.atan(math.sin(phi))
+    return math.exp(math.pi * math.tan(phi_star)) * math.tan(math.pi / 4 + phi_star / 2) ** 2
+
+
+def strip_footing(
+    friction_angle_deg: float,
+    base: FootingBase | str = FootingBase.rough,
+    *,
+    material: Any = "MS",
+    width: float = 0.04,
+    cell_size: float | None = None,
+    settlement_ratio: float = 0.1,
+    speed: float = 0.02,
+    progress: Callable[[float, float], None] | None = None,
+    run: Callable[..., Any] | None = None,
+) -> StripFootingResult:
+    """Bearing factor N_gamma of a rigid strip footing of ``width`` B [m] on a bed of ``material`` whose
+    continuum friction is set to sin(``friction_angle_deg``) (plane strain); ``base`` rough or smooth.
+    ``cell_size`` [m] (default B/20), ``speed`` [m/s], ``settlement_ratio`` s/B of the reading.
+    ``run`` replaces :func:`terradyn.mpm.run_intrusion` (tests)."""
+    from .. import materials
+    from ..geometry import Plate
+
+    phi_deg = check_range("friction_angle_deg", friction_angle_deg, 20.0, 45.0, unit="deg")
+    try:
+        base = FootingBase(base)
+    except ValueError:
+        raise InputError("base", base, "'rough' or 'smooth'") from None
+    mat = materials.get(material) if isinstance(material, str) else material
+    if mat.continuum is None or mat.bulk_density is None:
+        raise InputError("material", mat.name, "a medium with a [continuum] table and a bulk density")
+    b = check_length("width", width)
+    h = b / 20.0 if cell_size is None else check_positive("cell_size", cell_size)
+    ratio = check_range("settlement_ratio", settlement_ratio, 0.005, 0.5)
+    phi = math.radians(phi_deg)
+    mu = math.sin(phi)
+    from .mpm_calibration import poisson_ratio_for_stability
+
+    nu = max(mat.continuum.poisson_ratio, poisson_ratio_for_stability(mu))
+    if run is None:
+        from ..mpm import run_intrusion
+
+        run = run_intrusion
+    settlement = ratio * b
+    if settlement < 2.0 * h:
+        raise InputError(
+            "cell_size",
+            h,
+            f"at most {settlement / 2:.4g} m",
+            "the reading settlement must span two cells or more",
+        )
+    out_of_plane = 0.01
+    res = run(
+        Plate(length=b, width=out_of_plane),
+        mat,
+        depth=1.5 * settlement,
+        averaging_window=0.2 * settlement,
+        record_spacing=min(0.25 * h, 0.02 * settlement),
+        speed=speed,
+        cell_size=h,
+        friction_coefficient=mu,
+        poisson_ratio=nu,
+        surface_friction=ROUGH_FRICTION if base is FootingBase.rough else 0.0,
+        progress=progress,
+    )
+    df = res.to_dataframe()
+    s = df["depth_m"].to_numpy()
+    q = df["force_z_N"].to_numpy() / (b * out_of_plane)
+    touching = s > 0
+    if not np.any(touching):
+        raise SolverError("the footing never reached the bed")
+    fit = (s >= 0.5 * settlement) & (s <= 1.5 * settlement)
+    if np.count_nonzero(fit) < 4:
+        raise SolverError(f"too few records between {0.5 * settlement:.4g} and {1.5 * settlement:.4g} m")
+    slope, intercept = np.polyfit(s[fit], q[fit], 1)
+    near = np.abs(s - settlement) <= 0.1 * settlement
+    q_read = float(q[near].mean()) if np.any(near) else float(intercept + slope * settlement)
+    gamma = mat.bulk_density * 9.81
+    n_raw = 2.0 * q_read / (gamma * b)
+    n_corr = 2.0 * float(intercept) / (gamma * b)
+    return StripFootingResult(
+        friction_angle_deg=phi_deg,
+        base=base,
+        width_m=b,
+        cell_size_m=h,
+        N_gamma_mpm=n_corr,
+        N_gamma_raw=n_raw,
+        pressure_Pa=q_read,
+        settlement_m=settlement,
+        embedment_slope=float(slope) / gamma,
+        N_q_reduced=_nq_reduced(phi),
+        unit_weight_N_m3=gamma,
+        reference=_reference(phi_deg, base),
+        curve=(s[touching], q[touching]),
+    )

@@ -1,0 +1,56 @@
+"""Reading N_gamma from a strip-footing run: the intercept of the embedment line (stand-in solver)."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from terradyn import materials
+from terradyn.errors import InputError
+from terradyn.studies.mpm_verification import strip_footing
+
+
+def _fake(n_gamma, slope, width=0.04, out_of_plane=0.01):
+    gamma = materials.get("MS").bulk_density * 9.81
+    calls = {}
+
+    def run(body, material, *, depth, **kw):
+        calls.update(kw, depth=depth, length=body.length)
+        s = np.linspace(-0.001, depth, 400)
+        q_u = 0.5 * gamma * width * n_gamma
+        # elastic rise to the collapse pressure over 2 % of B, then the embedment line
+        q = np.where(s < 0.02 * width, q_u * np.clip(s, 0, None) / (0.02 * width), q_u + gamma * slope * s)
+        import pandas as pd
+
+        return SimpleNamespace(
+            to_dataframe=lambda: pd.DataFrame({"depth_m": s, "force_z_N": q * width * out_of_plane})
+        )
+
+    return run, calls
+
+
+@pytest.mark.parametrize("base", ["rough", "smooth"])
+def test_intercept_of_the_embedment_line_gives_n_gamma(base):
+    run, calls = _fake(n_gamma=11.0, slope=15.0)
+    res = strip_footing(30.0, base, run=run)
+    assert res.N_gamma_mpm == pytest.approx(11.0, rel=1e-6)
+    assert res.embedment_slope == pytest.approx(15.0, rel=1e-6)
+    assert res.N_gamma_raw > res.N_gamma_mpm  # the embedment term is not bearing capacity
+    assert calls["friction_coefficient"] == pytest.approx(math.sin(math.radians(30.0)))
+    assert calls["surface_friction"] == (0.0 if base == "smooth" else 2.0)
+    assert calls["cell_size"] == pytest.approx(0.04 / 20)
+    rec = res.record()
+    assert {"N_gamma_mpm", "N_gamma_reference", "reference"} <= set(rec)
+
+
+def test_settlement_must_span_cells_and_inputs_are_checked():
+    run, _ = _fake(10.0, 10.0)
+    with pytest.raises(InputError, match="cell_size"):
+        strip_footing(30.0, "rough", cell_size=0.004, settlement_ratio=0.1, run=run)
+    with pytest.raises(InputError, match="base"):
+        strip_footing(30.0, "sticky", run=run)
+    with pytest.raises(InputError, match="friction_angle_deg"):
+        strip_footing(60.0, "rough", run=run)
