@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import InputError, SolverError, check_positive
+from .errors import InputError, SolverError, check_length, check_positive
 from .materials import Material
 from .results import TableResult
 
@@ -85,6 +85,7 @@ def optimize(
     values: list[float] = []
     feasible: list[bool] = []
     worst = 1e30
+    bad_inputs: list[InputError] = []
 
     def params_of(x: np.ndarray) -> dict[str, float]:
         return {b.name: (float(round(v)) if b.integer else float(v)) for b, v in zip(bounds, x, strict=True)}
@@ -95,6 +96,9 @@ def optimize(
             v = float(objective(p))
             ok = math.isfinite(v)
         except SolverError:
+            v, ok = math.nan, False
+        except InputError as exc:  # a design outside what the model takes: infeasible, remember why
+            bad_inputs.append(exc)
             v, ok = math.nan, False
         for n in names:
             history[n].append(p[n])
@@ -122,6 +126,8 @@ def optimize(
         updating="immediate",
     )
     if res.fun >= worst:
+        if bad_inputs:
+            raise bad_inputs[0]
         raise SolverError("no feasible design in the bounds: every evaluation failed")
     cols: dict[str, np.ndarray] = {n: np.asarray(history[n]) for n in names}
     cols["objective"] = np.nan_to_num(np.asarray(values), nan=0.0)
@@ -242,8 +248,8 @@ def optimize_flapped_wheel(
     """
     if metric not in ("velocity", "cost-of-transport"):
         raise InputError("metric", metric, "'velocity' or 'cost-of-transport'")
-    hub_radius = check_positive("hub_radius", hub_radius)
-    width = check_positive("width", width)
+    hub_radius = check_length("hub_radius", hub_radius)
+    width = check_length("width", width)
     load = check_positive("load", load)
     if method not in ("steady", "dynamic"):
         raise InputError("method", method, "'steady' or 'dynamic'")
