@@ -32,6 +32,7 @@ _SUBMODULES = frozenset(
         "mpm",
         "optimize",
         "parallel",
+        "plasticity",
         "plotting",
         "results",
         "rft",
