@@ -296,7 +296,7 @@ def _solve_rough(
             else:
                 hi = mid
                 best = (mid, fan_mid, line_mid)
-            if hi - lo < 1e-13:
+            if hi - lo < 1e-10:
                 break
     fan_angle, fan, wedge = best
     assert wedge is not None
@@ -362,16 +362,25 @@ class StripFootingMoC:
         return out
 
 
-def _lines(net: _Net) -> tuple[tuple[FloatArray, ...], tuple[FloatArray, ...]]:
+def _lines(net: _Net, phi: float) -> tuple[tuple[FloatArray, ...], tuple[FloatArray, ...]]:
+    """Alpha lines (rows) and beta lines (columns) of the net; each beta line starts on the free surface:
+    in the passive Rankine zone (``theta = 0``) it is straight, rising at ``mu`` from the passive boundary."""
     alpha = tuple(np.array([nd for _, nd in row], dtype=np.float64) for row in net.rows if len(row) > 1)
     columns: dict[int, list[Node]] = {}
     for row in net.rows:
         for j, nd in row:
             columns.setdefault(j, []).append(nd)
-    beta = tuple(
-        np.array(columns[j], dtype=np.float64) for j in sorted(columns) if j > 0 and len(columns[j]) > 1
-    )
-    return alpha, beta
+    tan_mu = math.tan(math.pi / 4 - phi / 2)
+    s_surface = net.rows[0][0][1][2]  # passive boundary at the edge: s = (q + c cot phi) / (1 - sin phi)
+    beta = []
+    for j in sorted(columns):
+        col = columns[j]
+        if j == 0 or len(col) < 2:
+            continue
+        x0, y0 = col[0][0], col[0][1]
+        surface: Node = (x0 + y0 / tan_mu, 0.0, s_surface, 0.0)
+        beta.append(np.array([surface, *col], dtype=np.float64))
+    return alpha, tuple(beta)
 
 
 def _check_phi(friction_angle: float) -> float:
@@ -457,7 +466,7 @@ def moc_strip_footing(
         raise SolverError("the slip-line net did not cover the footing base; raise ray_count")
     if not math.isfinite(net.pressure):
         raise SolverError("the characteristics solution produced a non-finite pressure")
-    alpha, beta = _lines(net)
+    alpha, beta = _lines(net, phi)
     return StripFootingMoC(
         friction_angle=phi,
         width=b_width,
