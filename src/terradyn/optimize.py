@@ -77,6 +77,12 @@ def optimize(
 
     if not bounds:
         raise InputError("bounds", bounds, "at least one parameter")
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or not 0 <= seed < 2**32:
+        raise InputError("seed", seed, "an integer in [0, 2^32 - 1]")
+    if isinstance(max_iterations, bool) or not isinstance(max_iterations, int) or max_iterations < 1:
+        raise InputError("max_iterations", max_iterations, "an integer >= 1")
+    if isinstance(population, bool) or not isinstance(population, int) or population < 1:
+        raise InputError("population", population, "an integer >= 1")
     names = [b.name for b in bounds]
     if len(set(names)) != len(names):
         raise InputError("bounds", names, "distinct parameter names")
