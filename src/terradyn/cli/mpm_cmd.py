@@ -504,11 +504,20 @@ def verify_strip_footing(
     plot: str | None = typer.Option(
         None, "--plot", help="Bearing pressure against settlement (.png/.pdf/.svg/.jpg)."
     ),
+    fields: str | None = typer.Option(
+        None, "--fields", help="Plastic shear-rate field at the end of the run (.png/.pdf/.svg/.jpg)."
+    ),
+    slip_lines: bool = typer.Option(
+        False, "--slip-lines", help="Overlay the Prandtl slip-line field of the same footing on --fields."
+    ),
 ) -> None:
     """N_gamma of a rigid strip footing from MPM beside the plasticity-theory value for isochoric flow."""
     from ..studies.mpm_verification import strip_footing
 
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    fields_path = plot_file("--fields", fields)
+    if slip_lines and fields_path is None:
+        raise InputError("--slip-lines", True, "together with --fields FILE")
     if base not in ("rough", "smooth"):
         raise InputError("--base", base, "rough or smooth")
     with fraction_progress("MPM strip footing", "s") as bar:
@@ -520,4 +529,31 @@ def verify_strip_footing(
         from ..plotting.studies import plot_footing
 
         save_figure(plot_footing(res), plot_path)
+    if fields_path is not None:
+        save_figure(_footing_fields(res, slip_lines), fields_path, "--fields")
     emit(res.record(), fmt, out_path, title=f"strip footing, phi = {phi:g} deg, {base} base")
+
+
+def _footing_fields(res: Any, slip_lines: bool) -> Any:
+    from ..plotting.mpm import plot_fields
+
+    b = res.width_m
+    window = (-3.0 * b, 3.0 * b, -1.5 * b, 0.5 * b)
+    fig = plot_fields(
+        res.final_particles,
+        segments=res.final_segments,
+        quantities=("plastic_shear_rate",),
+        window=window,
+        title=f"MPM strip footing, phi = {res.friction_angle_deg:g} deg, {res.base.value} base, "
+        f"s/B = {res.settlement_m / b:.2g}",
+    )
+    if slip_lines:
+        from ..plasticity.slipline import prandtl_field
+        from ..plotting.slipline import plot_slip_lines
+
+        field = prandtl_field(b, math.radians(res.friction_angle_deg), base=res.base.value)
+        ax = fig.axes[0]
+        plot_slip_lines(field, ax=ax)
+        ax.set_xlim(window[0], window[1])
+        ax.set_ylim(window[2], window[3])
+    return fig

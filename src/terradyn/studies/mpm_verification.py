@@ -72,6 +72,8 @@ class StripFootingResult:
     unit_weight_N_m3: float
     reference: dict[str, Any]
     curve: tuple[np.ndarray, np.ndarray]
+    final_particles: dict[str, np.ndarray] | None = None
+    final_segments: np.ndarray | None = None
 
     def record(self) -> dict[str, Any]:
         rec: dict[str, Any] = {
@@ -203,4 +205,6 @@ def strip_footing(
         unit_weight_N_m3=gamma,
         reference=_reference(phi_deg, base),
         curve=(s[touching], q[touching]),
+        final_particles=getattr(res, "final_particles", None),
+        final_segments=None if getattr(res, "final_frame", None) is None else res.final_frame["segments"],
     )
