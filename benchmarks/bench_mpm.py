@@ -19,18 +19,18 @@ import numpy as np
 from terradyn import materials
 from terradyn.geometry import Plate
 from terradyn.mpm import GranularModel, run_intrusion
-from terradyn.mpm.bodies import BodyState, body_segments, effective_body
+from terradyn.mpm.bodies import BodyState, ContactScheme, body_segments, effective_body
 from terradyn.mpm.solver import BedGrid, Phase, Runner, make_bed, stable_time_step
 
 
-def _runner(n_particles: int, model: GranularModel, steps: int) -> Runner:
+def _runner(n_particles: int, model: GranularModel, steps: int, contact: str = "two-field") -> Runner:
     h = 0.005
     cells = n_particles / 4.0  # 2 x 2 particles per cell
     ncz = max(8, int(np.sqrt(cells / 4.0)))
     ncx = round(cells / ncz)
     grid = BedGrid(ncx * h, ncz * h, 0.05, h, -0.5 * ncx * h)
     p = make_bed(model, grid)
-    plate = effective_body(Plate(0.05, 0.1), h)
+    plate = effective_body(Plate(0.05, 0.1), h, contact)
     seg = body_segments(plate, h)
     body = BodyState(
         seg=seg,
@@ -41,19 +41,21 @@ def _runner(n_particles: int, model: GranularModel, steps: int) -> Runner:
         load=np.zeros(2),
         friction=0.4,
         width=0.1,
+        contact=ContactScheme(contact),
     )
     dt = stable_time_step(model, h)
     return Runner(model, grid, p, body, dt, [Phase("bench", steps)], record_every=steps)
 
 
 def particle_steps_per_second(
-    n_particles: int, model: GranularModel, min_time: float = 3.0
+    n_particles: int, model: GranularModel, min_time: float = 3.0, contact: str = "two-field"
 ) -> tuple[int, float]:
-    """(particles, particle-steps/s) of the compiled step loop on a bed of about ``n_particles``."""
-    _runner(n_particles, model, 2).run()  # warm-up / compile
+    """(particles, particle-steps/s) of the compiled step loop on a bed of about ``n_particles`` with
+    a plate resting in it under ``contact``."""
+    _runner(n_particles, model, 2, contact).run()  # warm-up / compile
     steps = 20
     while True:
-        r = _runner(n_particles, model, steps)
+        r = _runner(n_particles, model, steps, contact)
         t0 = time.perf_counter()
         r.run()
         dt = time.perf_counter() - t0
@@ -66,11 +68,12 @@ def main() -> None:
     quick = "--quick" in sys.argv
     model = GranularModel.from_material(materials.get("MS"))
     print(f"numba threads: {numba.get_num_threads()}")
-    print(f"{'particles':>10} {'particle-steps/s':>18}")
+    print(f"{'particles':>10} {'contact':>10} {'particle-steps/s':>18}")
     sizes = (10**4, 10**5) if quick else (10**4, 10**5, 10**6)
     for n in sizes:
-        count, rate = particle_steps_per_second(n, model, min_time=2.0 if quick else 5.0)
-        print(f"{count:>10d} {rate:>18.3e}")
+        for contact in ("two-field", "cover"):
+            count, rate = particle_steps_per_second(n, model, min_time=2.0 if quick else 5.0, contact=contact)
+            print(f"{count:>10d} {contact:>10} {rate:>18.3e}")
     if quick:
         return
     t0 = time.perf_counter()

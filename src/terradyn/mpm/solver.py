@@ -459,6 +459,7 @@ class Runner:
             nx, nz = self.grid.shape
             self._grid = (np.zeros((nx, nz)), np.zeros((nx, nz, 2)))
             self._buf = K.make_buffer(nx, nz, len(self.particles))
+            self._scratch = K.make_scratch(nx, nz, len(self.particles))
 
     def advance_steps(self, n: int, damping: float = 0.0) -> np.ndarray:
         """Advance ``n`` steps (no recording) and check stability; returns the per-step body forces
@@ -573,6 +574,7 @@ class Runner:
             self.grid.bounds,
             self.model.as_kernel_array(),
             self.has_body,
+            b.contact.code,
             b.seg,
             b.pose,
             b.twist,
@@ -583,6 +585,7 @@ class Runner:
             b.reach + 2.0 * self.grid.cell_size,
             b.friction,
             forces,
+            *self._scratch,
         )
 
     def frame(self) -> dict[str, np.ndarray]:

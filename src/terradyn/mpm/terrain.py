@@ -27,7 +27,7 @@ from ..errors import InputError, check_positive, check_range
 from ..geometry import Body
 from ..kinematics import Pose2D, Twist2D, Wrench2D
 from ..materials import Material
-from .bodies import BodyState, body_segments, effective_body
+from .bodies import BodyState, ContactScheme, body_segments, effective_body
 from .checkpoint import load_checkpoint, save_checkpoint
 from .model import BedPacking, GranularModel, Walls, default_settle_time, resolve_model
 from .solver import (
@@ -60,6 +60,8 @@ class MPMTerrain:
         :func:`terradyn.mpm.run_intrusion`.
     youngs_modulus, poisson_ratio, friction_coefficient, surface_friction, rate_dependent :
         overrides of the material's continuum parameters.
+    contact : grid contact scheme (:class:`~terradyn.mpm.bodies.ContactScheme`): ``"two-field"``
+        (default; bodies need no thickness) or the legacy ``"cover"``.
     """
 
     name = "mpm"
@@ -86,7 +88,9 @@ class MPMTerrain:
         friction_coefficient: float | None = None,
         surface_friction: float | None = None,
         rate_dependent: bool = False,
+        contact: ContactScheme | str = ContactScheme.TWO_FIELD,
     ) -> None:
+        self.contact = ContactScheme.coerce(contact)
         model = resolve_model(
             material,
             rate_dependent=rate_dependent,
@@ -136,7 +140,8 @@ class MPMTerrain:
 
     @property
     def body(self) -> Body:
-        """The body given to :meth:`init` (thin plates are thickened in MPM, see :attr:`mpm_body`)."""
+        """The body given to :meth:`init` (under the legacy ``"cover"`` contact thin plates are
+        thickened, see :attr:`mpm_body`)."""
         self._require()
         assert self._body is not None
         return self._body
@@ -191,7 +196,7 @@ class MPMTerrain:
         if not isinstance(body, Body):
             raise InputError("body", body, "a terradyn.geometry Body")
         h = self.grid.cell_size
-        eff = effective_body(body, h)
+        eff = effective_body(body, h, self.contact)
         state = BodyState(
             seg=body_segments(eff, h),
             pose=np.zeros(3),
@@ -201,6 +206,7 @@ class MPMTerrain:
             load=np.zeros(2),
             friction=self.model.surface_friction,
             width=body.width,
+            contact=self.contact,
         )
         particles = make_bed(
             self.model,
@@ -341,6 +347,7 @@ class MPMTerrain:
             "body": body,
             "model": self.model,
             "cell_size": self.grid.cell_size,
+            "contact": self.contact.value,
             "bed_width": self.grid.width,
             "bed_depth": self.grid.depth,
             "air": self.grid.air,
