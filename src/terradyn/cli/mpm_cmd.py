@@ -233,12 +233,23 @@ def intrude(
 
 def _spacing(flag: str, interval: float | None, speed: float) -> float | None:
     """Travel [m] of the body in ``interval`` simulated seconds."""
+    interval = _interval(flag, interval)
+    return None if interval is None else interval * speed
+
+
+#: the longest output interval accepted [s] of simulated time (MPM runs are seconds long)
+MAX_INTERVAL_S = 1000.0
+
+
+def _interval(flag: str, interval: float | None, duration: float | None = None) -> float | None:
+    """A simulated-time interval [s] in (0, duration] (or (0, 1000 s] without a duration)."""
     if interval is None:
         return None
     interval = check_finite(flag, interval)
-    if not interval > 0:
-        raise InputError(flag, interval, "a time > 0 [s]")
-    return interval * speed
+    top = MAX_INTERVAL_S if duration is None or not duration > 0 else duration
+    if not 0 < interval <= top:
+        raise InputError(flag, interval, f"a time in (0, {top:g}] [s]")
+    return interval
 
 
 def _mpm_wheel_flags() -> Any:
@@ -321,8 +332,8 @@ def wheel(
             checkpoint_path=outs.checkpoint,
             checkpoint_interval=checkpoint_interval,
             resume=resume,
-            record_interval=record_interval,
-            snapshot_interval=snapshot_interval,
+            record_interval=_interval("--record-interval", record_interval, duration),
+            snapshot_interval=_interval("--snapshot-interval", snapshot_interval, duration),
             snapshot_dir=outs.snapshots,
             progress=bar,
             frame_count=outs.frames,
