@@ -50,7 +50,8 @@ def geometry(pos, seg=SEG, pose=POSE):
     near = np.zeros(len(pos), dtype=np.int64)
     n_near = K.body_particles(pos, seg, pose, BOX_REACH + 2.5 * H, geo, near)
     node = np.zeros((*SHAPE, 3))
-    box = K.body_nodes(X0, Z0, H, seg, pose, BOX_REACH, K.BAND_CELLS * H, node)
+    node[:, :, 2] = 1e300
+    box = K.body_nodes(X0, Z0, H, seg, pose, BOX_REACH, K.BAND_CELLS * H, node, (0, -1, 0, -1))
     return geo, near, n_near, node, box
 
 
@@ -72,9 +73,9 @@ def test_body_particles_normals_equal_reference():
 @pytest.mark.parametrize("seed", [0, 1])
 def test_p2g_sides_equals_reference(seed):
     pos, vel, aff, stress, mass, vol = particles(seed)
-    geo, near, n_near, node, _ = geometry(pos)
+    geo, near, n_near, node, box = geometry(pos)
     side = np.zeros((*SHAPE, 9))
-    K.p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, X0, Z0, H, 1e-4, side)
+    K.p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, X0, Z0, H, 1e-4, side)
     ref = p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, X0, Z0, H, 1e-4)
     np.testing.assert_allclose(side, ref, rtol=1e-10, atol=1e-12)
     # both sides of the thin plate are populated on the band nodes
@@ -88,7 +89,7 @@ def _two_field_grid(seed):
     buf = np.zeros((2, *SHAPE, 3))
     K.p2g(pos, vel, aff, stress, mass, vol, X0, Z0, H, 1e-4, buf)
     side = np.zeros((*SHAPE, 9))
-    K.p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, X0, Z0, H, 1e-4, side)
+    K.p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, X0, Z0, H, 1e-4, side)
     gm, gp = K.grid_totals(buf)
     return pos, geo, node, box, buf, side, gm, gp
 
@@ -153,7 +154,7 @@ def test_zero_thickness_plate_stops_grains_on_both_sides():
     buf = np.zeros((1, *SHAPE, 3))
     K.p2g(pos, vel, aff, stress, mass, vol, X0, Z0, H, 1e-4, buf)
     side = np.zeros((*SHAPE, 9))
-    K.p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, X0, Z0, H, 1e-4, side)
+    K.p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, X0, Z0, H, 1e-4, side)
     gm = buf[0, ..., 0].copy()
     gv = np.zeros((*SHAPE, 2))
     gvm = np.zeros_like(gv)

@@ -225,16 +225,17 @@ def body_particles(pos, seg, pose, reach, geo, near):
 
 
 @njit(cache=True, fastmath=True)
-def body_nodes(x0, z0, h, seg, pose, reach, band, node):
+def body_nodes(x0, z0, h, seg, pose, reach, band, node, old_box):
     """Band nodes of the body: ``node`` (nx, nz, 3) = (n_x, n_z, phi) [-, -, m].
 
     Nodes within ``reach`` [m] of the body origin whose signed distance phi is below ``band`` [m]
-    get their world outward normal and phi; every other node gets phi = ``_FAR`` (no band). Returns
-    the node box ``(i_lo, i_hi, j_lo, j_hi)`` searched.
+    get their world outward normal and phi; every other node gets phi = ``_FAR`` (no band), given
+    that only nodes of ``old_box`` (the previous call's box) had a band. Returns the node box
+    ``(i_lo, i_hi, j_lo, j_hi)`` searched.
     """
     nx = node.shape[0]
     nz = node.shape[1]
-    node[:, :, 2] = _FAR
+    node[old_box[0] : old_box[1] + 1, old_box[2] : old_box[3] + 1, 2] = _FAR
     xb = pose[0]
     zb = pose[1]
     cth = math.cos(pose[2])
@@ -248,6 +249,7 @@ def body_nodes(x0, z0, h, seg, pose, reach, band, node):
             rx = x0 + i * h - xb
             rz = z0 + j * h - zb
             phi, nbx, nbz = polygon_sdf(cth * rx - sth * rz, sth * rx + cth * rz, seg)
+            node[i, j, 2] = _FAR
             if phi < band:
                 node[i, j, 0] = cth * nbx + sth * nbz
                 node[i, j, 1] = -sth * nbx + cth * nbz
@@ -256,16 +258,17 @@ def body_nodes(x0, z0, h, seg, pose, reach, band, node):
 
 
 @njit(cache=True, fastmath=True)
-def p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, x0, z0, h, dt, side):
+def p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0, z0, h, dt, side):
     """Particle -> grid scatter of the two grain fields on band nodes (after :func:`p2g`).
 
-    ``side`` (nx, nz, 9) is zeroed, then receives on band nodes: the far-side field's mass [kg/m] and
+    ``side`` (nx, nz, 9) is zeroed on the node ``box`` of :func:`body_nodes` (which holds every band
+    node), then receives on band nodes: the far-side field's mass [kg/m] and
     momentum (x, z) [kg/s] as :func:`p2g` computes them (internal-force impulse included), then for the
     near-side and the far-side field in turn ``sum w m n_p`` (x, z) [kg/m] and
     ``sum w m ((x_i - x_p) . n_p + phi_p)`` [kg]. Only the ``n_near`` particles ``near`` (from
     :func:`body_particles`, whose ``geo`` they use) contribute.
     """
-    side[:] = 0.0
+    side[box[0] : box[1] + 1, box[2] : box[3] + 1, :] = 0.0
     inv_h = 1.0 / h
     wx = np.empty(3)
     wz = np.empty(3)

@@ -339,17 +339,17 @@ def advance(
     eps = 1e-4 * h
     n_near = 0
     box = (0, -1, 0, -1)
-    if not sides:  # no stale two-field state for g2p
+    node[:, :, 2] = _FAR  # no band yet (and no stale two-field state for g2p)
+    if not sides:
         geo[:] = 0.0
-        node[:, :, 2] = _FAR
     for step in range(n_steps):
         # 1. particle -> grid (and, near the body, the two grain fields)
         if sides:
             n_near = body_particles(pos, seg, pose, reach + 2.5 * h, geo, near)
-            box = body_nodes(x0, z0, h, seg, pose, reach, band, node)
+            box = body_nodes(x0, z0, h, seg, pose, reach, band, node, box)
         p2g(pos, vel, aff, stress, mass, vol, x0, z0, h, dt, buf)
         if sides:
-            p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, x0, z0, h, dt, side)
+            p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0, z0, h, dt, side)
         # 2. grid update: momentum, gravity, walls, body contact; the body moves
         grid_update(buf, grid_mass, grid_vel, dt, gravity, damping, pad, wall_kind, wall_mu)
         fx = 0.0
