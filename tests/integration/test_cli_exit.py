@@ -184,7 +184,14 @@ def test_version_and_help_start_fast():
         assert "HEAVY []" in res.stdout, (flag, res.stdout, res.stderr)
 
 
-RETIRED = ("--reduced", "--models", "--plate-length", "--plate-width", "--record-spacing", "--snapshot-spacing")
+RETIRED = (
+    "--reduced",
+    "--models",
+    "--plate-length",
+    "--plate-width",
+    "--record-spacing",
+    "--snapshot-spacing",
+)
 
 
 def test_one_option_vocabulary():
@@ -219,3 +226,26 @@ def test_checkpoint_flags_are_checked_before_the_run(run_cli, tmp_path):
     assert code == 1 and "--checkpoint" in err and "no such file" in err
     code, _, err = run_cli(*base, "--checkpoint", str(tmp_path / "run.txt"))
     assert code == 1 and ".npz" in err
+
+
+@pytest.mark.parametrize("with_checkpoint", [False, True])
+def test_snapshots_of_a_stopped_run_go_unless_it_can_resume(run_cli, tmp_path, monkeypatch, with_checkpoint):
+    import terradyn.mpm as mpm
+
+    def stopped_run(*args, snapshot_dir, checkpoint_path, **kw):
+        snapshot_dir.mkdir(exist_ok=True)
+        (snapshot_dir / "particles_000000010.nc").write_bytes(b"x")
+        if checkpoint_path is not None:
+            checkpoint_path.write_bytes(b"ckpt")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(mpm, "run_intrusion", stopped_run)
+    snaps = tmp_path / "snaps"
+    extra = ["--checkpoint", str(tmp_path / "run.npz")] if with_checkpoint else []
+    code, _, err = run_cli("mpm", "intrude", "plate", "--length", "0.06", "--depth", "0.03",
+                           "--snapshots", str(snaps), *extra)  # fmt: skip
+    assert code == 130 and len(err.strip().splitlines()) == 1
+    if with_checkpoint:
+        assert (snaps / "particles_000000010.nc").exists() and "--resume" in err
+    else:
+        assert not snaps.exists() and "nothing saved" in err

@@ -112,22 +112,50 @@ class _Outputs:
 
 @contextmanager
 def _interruptible(outputs: _Outputs) -> Iterator[None]:
-    """Turn an interrupt into one line saying where the run stopped and how to continue it."""
+    """Turn an interrupt into one line saying where the run stopped and how to continue it.
+
+    Snapshots are written as the run goes. With --checkpoint they belong to a resumable run and stay
+    when it stops; without one, a run that fails or is interrupted removes the snapshots it wrote (and
+    the folder if it made it): no partial output."""
+    folder = outputs.snapshots
+    existed = folder is not None and folder.exists()
+    before = set(folder.iterdir()) if folder is not None and existed else set()
     try:
         yield
-    except KeyboardInterrupt as exc:
-        t = getattr(exc, "time_s", None)
-        at = f" at t = {t:.4g} s" if isinstance(t, float) else ""
-        saved = getattr(exc, "checkpoint_path", None)
-        failure = " ".join(str(getattr(exc, "failure", "") or "").split())
-        if saved is not None and not failure:
-            message = f"run stopped{at}; checkpoint written to {saved}: rerun the same command with --resume"
-        elif saved is not None:
-            message = f"run stopped{at}; the checkpoint could not be written ({failure})"
-        else:
-            message = f"run stopped{at}; nothing saved (give --checkpoint FILE to keep the work of a run)"
-        exc.message = message  # type: ignore[attr-defined]
+    except BaseException as exc:
+        if folder is not None and outputs.checkpoint is None:
+            _remove_new_snapshots(folder, before, existed)
+        if not isinstance(exc, KeyboardInterrupt):
+            raise
+        _explain_interrupt(exc, outputs)
         raise
+
+
+def _remove_new_snapshots(folder: Path, before: set[Path], existed: bool) -> None:
+    if not folder.exists():
+        return
+    for p in set(folder.iterdir()) - before:
+        if p.is_file():
+            p.unlink(missing_ok=True)
+    if not existed and not any(folder.iterdir()):
+        folder.rmdir()
+
+
+def _explain_interrupt(exc: KeyboardInterrupt, outputs: _Outputs) -> None:
+    """Attach the one-line explanation the CLI prints for an interrupted run."""
+    t = getattr(exc, "time_s", None)
+    at = f" at t = {t:.4g} s" if isinstance(t, float) else ""
+    saved = getattr(exc, "checkpoint_path", None)
+    if saved is None and outputs.checkpoint is not None and outputs.checkpoint.exists():
+        saved = outputs.checkpoint
+    failure = " ".join(str(getattr(exc, "failure", "") or "").split())
+    if saved is not None and not failure:
+        message = f"run stopped{at}; checkpoint written to {saved}: rerun the same command with --resume"
+    elif saved is not None:
+        message = f"run stopped{at}; the checkpoint could not be written ({failure})"
+    else:
+        message = f"run stopped{at}; nothing saved (give --checkpoint FILE to keep the work of a run)"
+    exc.message = message  # type: ignore[attr-defined]
 
 
 def _field_outputs(result: Any, fields: Path | None, animate: Path | None) -> None:
