@@ -195,6 +195,7 @@ def _check_case(args, capsys, tmp_path_factory, *, help_allowed: bool = False) -
     finally:
         os.chdir(cwd)
     _, err = capsys.readouterr()
+    STATS[code] = STATS.get(code, 0) + 1
     shown = f"terradyn {' '.join(repr(a) for a in args)} -> {code}: {err.strip()[:400]}"
     assert code in ALLOWED_CODES, shown
     assert "Traceback" not in err and "internal error" not in err, shown
@@ -210,6 +211,8 @@ def _check_case(args, capsys, tmp_path_factory, *, help_allowed: bool = False) -
 
 
 CASES = int(os.environ.get("TERRADYN_FUZZ_CASES", "250"))
+#: exit code -> cases, written to $TERRADYN_FUZZ_REPORT (JSON) when the module's tests end
+STATS: dict[int, int] = {}
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -218,8 +221,15 @@ def _compiled_kernels():
     try:
         from terradyn.warmup import warmup
     except ImportError:  # pragma: no cover - before the warmup module existed
+        yield
         return
     warmup()
+    yield
+    report = os.environ.get("TERRADYN_FUZZ_REPORT")
+    if report:
+        import json
+
+        Path(report).write_text(json.dumps({"cases": sum(STATS.values()), "exit_codes": STATS}, indent=1))
 
 
 # A budget's SIGINT that lands inside a finaliser (a weakref callback of matplotlib, say) is swallowed
