@@ -42,6 +42,9 @@ class MPMOptions:
     ppc = typer.Option(2, "--particles-per-cell", help="Particles per cell along each axis.")
     packing = typer.Option("consolidated", "--packing", help="consolidated or unconsolidated bed.")
     walls = typer.Option(None, "--walls", help="Wall condition: free-slip, no-slip or frictional.")
+    contact = typer.Option(
+        "two-field", "--contact", help="Body-grain grid contact: two-field (default) or the legacy cover."
+    )
     checkpoint = typer.Option(
         None, "--checkpoint", help="Checkpoint file (.npz), written atomically, on Ctrl-C and at the end."
     )
@@ -206,6 +209,7 @@ def intrude(
     particles_per_cell: int = MPMOptions.ppc,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
+    contact: str = MPMOptions.contact,
     checkpoint: str | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
@@ -243,6 +247,7 @@ def intrude(
             particles_per_cell=particles_per_cell,
             packing=packing,
             walls=walls,
+            contact=contact,
             checkpoint_path=outs.checkpoint,
             checkpoint_interval=checkpoint_interval,
             resume=resume,
@@ -308,6 +313,7 @@ def wheel(
     particles_per_cell: int = MPMOptions.ppc,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
+    contact: str = MPMOptions.contact,
     checkpoint: str | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
@@ -357,6 +363,7 @@ def wheel(
             particles_per_cell=particles_per_cell,
             packing=packing,
             walls=walls,
+            contact=contact,
             checkpoint_path=outs.checkpoint,
             checkpoint_interval=checkpoint_interval,
             resume=resume,

@@ -54,7 +54,8 @@ def mpm_alpha_map(
 ) -> TableResult:
     """Stress per depth of a plate from MPM and from RFT over plate angles and motion directions.
 
-    MPM: the plate (``length`` x ``width``; MPM makes it at least three cells thick) enters the settled
+    MPM: the plate (``length`` x ``width``, ``thickness`` thick, default one cell; the two-field grid
+    contact needs no thickening) enters the settled
     bed at ``speed`` [m/s] along the direction and its force is averaged as its centre passes ``depth``;
     alpha = F / (length width depth) [N/m^3], alpha_x with the law's sign (positive resists motion
     along +x). RFT: the Li et al. (2013) law of the same medium at beta = -angle, gamma = direction.
