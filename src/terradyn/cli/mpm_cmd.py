@@ -285,6 +285,17 @@ def _interval(flag: str, interval: float | None, duration: float | None = None) 
     return interval
 
 
+def _mpm_wheel(shape: str, width: float, sizes: dict[str, Any]) -> Any:
+    """The wheel of an MPM command from --shape (circular, grousered or flapped) and its size flags."""
+    from .wheel_cmd import WheelShape, _shape_flags, wheel_body
+
+    allowed = (WheelShape.circular, WheelShape.grousered, WheelShape.flapped)
+    kind = next((k for k in allowed if k.value == shape), None)
+    if kind is None:
+        raise InputError("--shape", shape, "circular, grousered or flapped")
+    return wheel_body(kind, width, _shape_flags(kind, {**sizes, "points_file": None}))
+
+
 def _mpm_wheel_flags() -> Any:
     from .wheel_cmd import WHEEL_SIZE_FLAGS
 
@@ -337,15 +348,7 @@ def wheel(
     """Wheel on a settled MPM bed: forced slip (--slip), self-propelled at --omega (optionally towing
     --drawbar-load), or torque-driven (--drive-torque); sinkage, pull, torque and slip."""
     from ..mpm import run_wheel
-    from .wheel_cmd import WheelShape, _shape_flags, wheel_body
-
-    try:
-        kind = WheelShape(shape)
-    except ValueError:
-        raise InputError("--shape", shape, "circular, grousered or flapped") from None
-    if kind not in (WheelShape.circular, WheelShape.grousered, WheelShape.flapped):
-        raise InputError("--shape", shape, "circular, grousered or flapped")
-    body = wheel_body(kind, width, _shape_flags(kind, {**sizes, "points_file": None}))
+    body = _mpm_wheel(shape, width, sizes)
     outs = _Outputs(out=out, plot=plot, series=series, fields=fields, animate=animate, frames=frames,
                     snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip
     with _interruptible(outs), fraction_progress("MPM wheel", "s") as bar:
@@ -500,17 +503,10 @@ def converge_wheel_cmd(
 ) -> None:
     """Sinkage, drawbar pull and torque of an MPM wheel at several cell sizes, with converged estimates."""
     from ..studies.convergence import converge_wheel
-    from .wheel_cmd import WheelShape, _shape_flags, wheel_body
 
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     cells = _cell_sizes(cell_sizes)
-    try:
-        kind = WheelShape(shape)
-    except ValueError:
-        raise InputError("--shape", shape, "circular, grousered or flapped") from None
-    if kind not in (WheelShape.circular, WheelShape.grousered, WheelShape.flapped):
-        raise InputError("--shape", shape, "circular, grousered or flapped")
-    body = wheel_body(kind, width, _shape_flags(kind, {**sizes, "points_file": None}))
+    body = _mpm_wheel(shape, width, sizes)
     with fraction_progress("MPM convergence", "runs") as bar:
         res = converge_wheel(
             body,
