@@ -84,3 +84,20 @@ def test_each_orientation_is_one_run_per_trial():
     fit = fit_mpm_friction(data, materials.get("MS"), plate_length=0.04, plate_width=0.02, run=model,
                            tolerance=1e-4)  # fmt: skip
     assert len(model.calls) == 2 * len(fit.trials)
+
+
+@pytest.mark.slow
+def test_fit_recovers_the_friction_of_mpm_generated_data():
+    """Data made by MPM at mu_s = 0.65 (coarse bed); the fit starts from MS's 0.559 and finds 0.65."""
+    from terradyn.geometry import Plate
+    from terradyn.mpm import run_intrusion
+
+    ms = materials.get("MS")
+    res = run_intrusion(Plate(0.06, 0.02), ms, depth=0.04, cell_size=0.01, friction_coefficient=0.65)
+    df = res.to_dataframe()
+    depths = np.array([0.015, 0.02, 0.025, 0.03, 0.035, 0.04])
+    forces = np.interp(depths, df["depth_m"].to_numpy(), df["force_z_N"].to_numpy())
+    fit = fit_mpm_friction(_data(depths, forces), ms, plate_length=0.06, plate_width=0.02, cell_size=0.01,
+                           tolerance=0.005)  # fmt: skip
+    assert fit.converged
+    assert fit.friction_coefficient == pytest.approx(0.65, rel=0.03)
