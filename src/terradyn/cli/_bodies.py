@@ -10,6 +10,7 @@ import typer
 
 from .. import geometry
 from ..errors import InputError
+from .options import DEFAULT_BODY_WIDTH
 
 __all__ = ["BODY_FLAGS", "BodyKind", "BodyOptions", "build_body"]
 
@@ -64,7 +65,7 @@ class BodyOptions:
     """Typer options of every size flag (all optional; the shape decides which apply)."""
 
     length = typer.Option(None, "--length", help="Plate length [m].")
-    width = typer.Option(0.01, "--width", help="Out-of-plane width of the body [m].")
+    width = typer.Option(DEFAULT_BODY_WIDTH, "--width", help="Out-of-plane width of the body [m].")
     thickness = typer.Option(None, "--thickness", help="Plate/flap/C-leg thickness [m].")
     radius = typer.Option(None, "--radius", help="Radius [m] (cylinder, wheel rim, C-leg).")
     side = typer.Option(None, "--side", help="Square side [m].")

@@ -5,19 +5,17 @@ from __future__ import annotations
 import math
 import os
 import sys
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any
 
 from ..errors import InputError
 from ..io import (
     OutputFormat,
     atomic_write,
     atomic_write_text,
-    check_output_file,
     current_output_set,
-    finalize_temp,
     format_output,
     save_figure,
 )
@@ -26,16 +24,12 @@ __all__ = [
     "OutputFormat",
     "atomic_write",
     "atomic_write_text",
-    "check_figure_path",
     "emit",
-    "finalize_temp",
     "format_output",
     "parse_float_list",
     "progress",
     "save_figure",
 ]
-
-T = TypeVar("T")
 
 
 def emit(
@@ -60,13 +54,6 @@ def emit(
         outs.print(text)
     else:
         sys.stdout.write(text)
-
-
-def check_figure_path(path: Path | str, field: str = "--plot") -> Path:
-    """``path`` if a figure (.png/.pdf/.svg/.jpg) can be written there."""
-    from ..io import FIGURE_SUFFIXES
-
-    return check_output_file(field, path, suffixes=FIGURE_SUFFIXES, what="figure file")
 
 
 def parse_float_list(field: str, text: str) -> list[float]:
@@ -168,10 +155,3 @@ def spinner(label: str) -> Iterator[None]:
     with Progress(SpinnerColumn(), TextColumn(label), TimeElapsedColumn(), transient=True) as bar:
         bar.add_task(label, total=None)
         yield
-
-
-def iterate_with_progress(items: Iterable[T], total: int, description: str) -> Iterator[T]:
-    with progress(total, description) as advance:
-        for item in items:
-            yield item
-            advance(1)

@@ -348,6 +348,7 @@ def wheel(
     """Wheel on a settled MPM bed: forced slip (--slip), self-propelled at --omega (optionally towing
     --drawbar-load), or torque-driven (--drive-torque); sinkage, pull, torque and slip."""
     from ..mpm import run_wheel
+
     body = _mpm_wheel(shape, width, sizes)
     outs = _Outputs(out=out, plot=plot, series=series, fields=fields, animate=animate, frames=frames,
                     snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip

@@ -62,17 +62,11 @@ _SYNONYMS = {
     "checkpoint_path": "checkpoint",
     "snapshot_dir": "snapshots",
     "frame_count": "frames",
-    "output_every": "output_every",
     "path": "points_file",
     "flap_thickness": "thickness",
-    "exit_angle": "exit_angle",
-    "friction_coefficient": "friction",
     "max_iterations": "iterations",
     "omegas": "omega",
-    "threads": "threads",
     "friction_angle_deg": "phi",
-    "material": "material",
-    "name": "name",
 }
 
 _ACTIVE: dict[str, str] = {}

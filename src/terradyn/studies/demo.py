@@ -15,14 +15,7 @@ __all__ = ["run_demo"]
 
 def run_demo(out: Path) -> list[Path]:
     """Run the wheel force-slip study; write CSV and PNG files to ``out``; print a summary."""
-    from ..io import (
-        OutputFormat,
-        atomic_write_text,
-        check_output_folder,
-        format_output,
-        output_set,
-        save_figure,
-    )
+    from ..io import OutputFormat, check_output_folder, format_output, output_set
     from .registry import run_study
 
     out = check_output_folder("out", out)
@@ -31,7 +24,7 @@ def run_demo(out: Path) -> list[Path]:
     elapsed = time.perf_counter() - t0
     with output_set() as outs:
         outs.folder(out)
-        files = _write(result, out, atomic_write_text, save_figure)
+        files = _write(result, out)
         outs.print(
             format_output(
                 result.summary,
@@ -43,7 +36,9 @@ def run_demo(out: Path) -> list[Path]:
     return files
 
 
-def _write(result: Any, out: Path, atomic_write_text: Any, save_figure: Any) -> list[Path]:
+def _write(result: Any, out: Path) -> list[Path]:
+    from ..io import atomic_write_text, save_figure
+
     files = []
     for name, table in result.tables.items():
         files.append(atomic_write_text(out / f"{name}.csv", table.to_dataframe().to_csv(index=False)))

@@ -111,8 +111,9 @@ def _reference(phi_deg: float, base: FootingBase) -> dict[str, Any]:
 
 def _nq_reduced(phi: float) -> float:
     """Reissner's N_q at the Davis (1968) isochoric angle tan phi* = sin phi."""
-    phi_star = math.atan(math.sin(phi))
-    return math.exp(math.pi * math.tan(phi_star)) * math.tan(math.pi / 4 + phi_star / 2) ** 2
+    from ..plasticity import davis1968_reduced_friction_angle, reissner1924_nq
+
+    return float(reissner1924_nq(davis1968_reduced_friction_angle(phi)))
 
 
 def strip_footing(
