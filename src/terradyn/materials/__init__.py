@@ -8,6 +8,7 @@ with :func:`get`, list them with :func:`available`, read a user's own file with 
 from ._material import (
     BekkerParameters,
     ContinuumParameters,
+    DEMParameters,
     LiCoefficients,
     Material,
     Provenance,
@@ -19,6 +20,7 @@ from ._writer import material_to_toml, write_material
 __all__ = [
     "BekkerParameters",
     "ContinuumParameters",
+    "DEMParameters",
     "LiCoefficients",
     "Material",
     "Provenance",

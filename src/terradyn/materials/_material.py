@@ -8,10 +8,12 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 
 from ..errors import InputError, check_finite, check_positive, check_range
+from ._dem_parameters import DEMParameters
 
 __all__ = [
     "BekkerParameters",
     "ContinuumParameters",
+    "DEMParameters",
     "LiCoefficients",
     "Material",
     "Provenance",
@@ -189,6 +191,7 @@ class Material:
     grain_density, bulk_density, critical_density : float or None  [kg/m^3]
     internal_friction_angle : float or None  [rad] (3D-RFT media scaling, MPM mu_s mapping)
     surface_friction : float or None  body-medium friction coefficient [-] (3D-RFT tangential cap)
+    dem : DEMParameters or None  grain and contact parameters of the DEM reference (``[dem]`` table)
     drft_lambda : float or None  inertial coefficient of dynamic RFT [-]
     provenance : Provenance
     """
@@ -204,6 +207,7 @@ class Material:
     internal_friction_angle: float | None = None
     drft_lambda: float | None = None
     surface_friction: float | None = None
+    dem: DEMParameters | None = None
     provenance: Provenance = field(default_factory=Provenance)
 
     def __post_init__(self) -> None:
@@ -259,6 +263,13 @@ class Material:
                 f"material {self.name!r}.continuum", None, "continuum (MPM) parameters for this model"
             )
         return self.continuum
+
+    def require_dem(self) -> DEMParameters:
+        if self.dem is None:
+            raise InputError(
+                f"material {self.name!r}.dem", None, "DEM parameters (a [dem] table) for this model"
+            )
+        return self.dem
 
     def with_zeta(self, zeta: float) -> Material:
         """A copy whose RFT alpha map is rescaled so that alpha_z(0, pi/2) = ``zeta`` [N/m^3]."""

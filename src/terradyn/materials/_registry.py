@@ -13,6 +13,7 @@ from ..errors import InputError
 from ._material import (
     BekkerParameters,
     ContinuumParameters,
+    DEMParameters,
     LiCoefficients,
     Material,
     Provenance,
@@ -21,7 +22,7 @@ from ._material import (
 
 __all__ = ["available", "from_dict", "get", "load"]
 
-_SECTIONS = {"meta", "rft", "bekker", "density", "continuum", "friction", "drft"}
+_SECTIONS = {"meta", "rft", "bekker", "density", "continuum", "friction", "drft", "dem"}
 _META_KEYS = {"name", "description", "citation", "doi", "table", "notes"}
 _RFT_KEYS = {"coefficients", "zeta_N_per_cm3", "zeta_N_per_m3", "scale_N_per_m3", "notes"}
 _BEKKER_KEYS = {
@@ -46,6 +47,18 @@ _CONTINUUM_KEYS = {
 }
 _FRICTION_KEYS = {"internal_friction_angle_deg", "surface_friction", "notes"}
 _DRFT_KEYS = {"lambda", "notes"}
+#: [dem] key -> DEMParameters field
+_DEM_FIELDS = {
+    "grain_diameter_m": "grain_diameter",
+    "diameter_spread": "diameter_spread",
+    "grain_density_kg_m3": "grain_density",
+    "youngs_modulus_Pa": "youngs_modulus",
+    "poisson_ratio": "poisson_ratio",
+    "friction": "friction",
+    "rolling_friction": "rolling_friction",
+    "restitution": "restitution",
+    "wall_friction": "wall_friction",
+}
 
 
 def _check_keys(section: str, table: Any, allowed: set[str], where: str) -> dict[str, Any]:
@@ -99,6 +112,12 @@ def _rft(table: dict[str, Any], where: str) -> RFTParameters:
     return RFTParameters(coeffs, zeta / coeffs.alpha_z_plate_down())
 
 
+def _dem(table: Any, where: str) -> DEMParameters:
+    d = _check_keys("dem", table, {*_DEM_FIELDS, "notes"}, where)
+    values = {name: _number(d, key, "dem", where) for key, name in _DEM_FIELDS.items()}
+    return DEMParameters(**values, notes=str(d.get("notes", "")))
+
+
 def from_dict(data: dict[str, Any], *, source: str = "<dict>") -> Material:
     """Build a :class:`Material` from the parsed content of a material TOML file."""
     where = source
@@ -144,6 +163,7 @@ def from_dict(data: dict[str, Any], *, source: str = "<dict>") -> Material:
                 _number(c, "surface_friction", "continuum", where) if "surface_friction" in c else 0.4
             ),
         )
+    dem = _dem(data["dem"], where) if "dem" in data else None
     friction = _check_keys("friction", data.get("friction", {}), _FRICTION_KEYS, where)
     drft = _check_keys("drft", data.get("drft", {}), _DRFT_KEYS, where)
 
@@ -163,6 +183,7 @@ def from_dict(data: dict[str, Any], *, source: str = "<dict>") -> Material:
         internal_friction_angle=math.radians(phi_deg) if phi_deg is not None else None,
         drft_lambda=opt(drft, "lambda", "drft"),
         surface_friction=opt(friction, "surface_friction", "friction"),
+        dem=dem,
         provenance=Provenance(
             citation=str(meta.get("citation", "")),
             doi=str(meta.get("doi", "")),

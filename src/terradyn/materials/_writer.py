@@ -65,6 +65,18 @@ def material_to_toml(material: Material) -> str:
             f"inertial_number_0 = {_f(c.inertial_number_0)}", f"grain_diameter_m = {_f(c.grain_diameter)}",
             f"surface_friction = {_f(c.surface_friction)}",
         ]  # fmt: skip
+    if m.dem is not None:
+        d = m.dem
+        lines += [
+            "", "[dem]", f"grain_diameter_m = {_f(d.grain_diameter)}",
+            f"diameter_spread = {_f(d.diameter_spread)}",
+            f"grain_density_kg_m3 = {_f(d.grain_density)}", f"youngs_modulus_Pa = {_f(d.youngs_modulus)}",
+            f"poisson_ratio = {_f(d.poisson_ratio)}", f"friction = {_f(d.friction)}",
+            f"rolling_friction = {_f(d.rolling_friction)}", f"restitution = {_f(d.restitution)}",
+            f"wall_friction = {_f(d.wall_friction)}",
+        ]  # fmt: skip
+        if d.notes:
+            lines.append(f"notes = {_q(d.notes)}")
     return "\n".join(lines) + "\n"
 
 

