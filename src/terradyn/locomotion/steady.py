@@ -18,7 +18,7 @@ import numpy as np
 
 from ..errors import InputError, SolverError, check_positive, check_range
 from ..geometry import Body, WheelCircular
-from ..kinematics import Pose2D, Twist2D
+from ..kinematics import Pose2D, SlipDefinition, Twist2D, as_slip_definition, speeds_from_slip
 from ..materials import Material
 from ..rft import RFTModel
 from ..terrain import TerrainModel
@@ -252,6 +252,7 @@ def wheel_steady(
     *,
     omega: float = 1.0,
     phase_count: int = 16,
+    slip_definition: SlipDefinition | str = SlipDefinition.CLASSIC,
 ) -> WheelSteadyResult:
     """Steady forced-slip state of a wheel: sinkage, drawbar pull, torque and power at a slip.
 
@@ -264,22 +265,33 @@ def wheel_steady(
     load : float
         Vertical load W on the axle [N] (> 0).
     slip : float
-        s = 1 - V_x / (omega r) in [-1, 1]; > 0 driving, < 0 skidding.
+        In [-1, 1]; > 0 driving, < 0 skidding. Classic definition s = 1 - V_x / (omega r); with
+        ``slip_definition="bounded"``, s = (omega r - V_x) / max(omega r, V_x), where -1 is a locked
+        wheel (:class:`terradyn.kinematics.SlipDefinition`).
     omega : float
-        Spin rate [rad/s] (> 0). Quasi-static RFT does not depend on it.
+        Spin rate [rad/s] (> 0); for a bounded slip s < 0 it sets the carriage speed V_x = omega r and
+        the spin is (1 + s) omega. Quasi-static RFT does not depend on it.
     phase_count : int
         Wheel angles sampled over one period for non-circular wheels (ignored for circular ones).
+    slip_definition : SlipDefinition or str
+        "classic" (default) or "bounded"; the result's ``slip`` is in the same definition.
     """
     model = _as_model(model)
     load = check_positive("load", load)
-    slip = check_range("slip", slip, -1.0, 1.0, hint="s = 1 - V/(omega r)")
+    definition = as_slip_definition(slip_definition)
+    hint = (
+        "s = 1 - V/(omega r)" if definition is SlipDefinition.CLASSIC else "s = (omega r - V)/max(omega r, V)"
+    )
+    slip = check_range("slip", slip, -1.0, 1.0, hint=hint)
     omega = check_positive("omega", omega, allow_zero=False) if omega != 0 else _zero_omega(omega)
     if not isinstance(phase_count, int | np.integer) or not (1 <= phase_count <= 4096):
         raise InputError("phase_count", phase_count, "an integer in [1, 4096]")
     radius = wheel_nominal_radius(body)
     period = wheel_rotation_period(body)
     thetas = np.zeros(1) if period is None else np.arange(phase_count) * period / phase_count
-    twist = Twist2D((1.0 - slip) * omega * radius, 0.0, omega)
+    rim, vx = speeds_from_slip(slip, definition=definition, speed=omega * radius)
+    omega = rim / radius
+    twist = Twist2D(vx, 0.0, omega)
     if isinstance(model, RFTModel):
         return _rft_point(model, body, load, slip, omega, thetas, twist)
     fn = _ForceFunction(model, body, twist, thetas)
