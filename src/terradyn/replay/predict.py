@@ -1,0 +1,353 @@
+"""Predict one run of a runs table with a terrain model (2D or 3D), by name.
+
+Models (:data:`REPLAY_MODELS`): ``rft`` (plane RFT, Li et al. 2013), ``drft`` (dynamic RFT), ``wong-reece``
+(Wong-Reece rigid wheel), ``rft3d`` (3D RFT, Agarwal et al. 2023), and the slip-sinkage models of
+:mod:`terradyn.rft.slip_sinkage`: ``rft-ss`` (2D) and ``rft3d-ss`` (3D). Plane models predict force per
+width times the wheel width; they cannot take a slip angle or a mesh (such a run is reported as not
+replayed, with the reason). Load-control runs that the library's steady solvers accept (omega > 0,
+``1 - V/(omega r)`` in [-1, 1], |slip angle| < 90 deg) go through them; the others (locked wheel, deep
+skid, 90 deg) through the twist-based solver of :mod:`terradyn.replay.solve`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError, TerradynError, check_positive
+from .table import QUANTITIES, RunRow, WheelSpec
+
+__all__ = ["MODELS_2D", "MODELS_3D", "REPLAY_MODELS", "Prediction", "ReplayModel", "predict_run"]
+
+MODELS_2D = ("rft", "drft", "wong-reece", "rft-ss")
+MODELS_3D = ("rft3d", "rft3d-ss")
+REPLAY_MODELS = (*MODELS_2D, *MODELS_3D)
+_SLIP_SINKAGE = ("rft-ss", "rft3d-ss")
+# More rotational symmetry than this counts as axisymmetric (one phase): a meshed smooth rim.
+_AXISYMMETRIC_ORDER = 90
+
+
+@dataclass(frozen=True)
+class ReplayModel:
+    """A terrain model for replay, by name, with the parameters calibration may change.
+
+    Attributes
+    ----------
+    name : one of :data:`REPLAY_MODELS` (``wr``/``wongreece`` accepted for wong-reece)
+    scale : factor on the medium's RFT scale (zeta in 2D, xi in 3D) [-], > 0
+    excavation, bulldozing, repose_angle : slip-sinkage parameters [-], [-], [rad] (None: the model's
+        defaults, :class:`terradyn.rft.slip_sinkage.SlipSinkageParameters`); only for rft-ss/rft3d-ss
+    phase_count : wheel angles averaged over one period of a non-circular wheel
+    """
+
+    name: str
+    scale: float = 1.0
+    excavation: float | None = None
+    bulldozing: float | None = None
+    repose_angle: float | None = None
+    phase_count: int = 16
+
+    def __post_init__(self) -> None:
+        key = self.name.strip().lower()
+        key = {"wr": "wong-reece", "wongreece": "wong-reece"}.get(key, key)
+        if key not in REPLAY_MODELS:
+            raise InputError("model", self.name, f"one of {list(REPLAY_MODELS)}")
+        object.__setattr__(self, "name", key)
+        check_positive("scale", self.scale, allow_zero=False)
+        if key == "wong-reece" and self.scale != 1.0:
+            raise InputError("scale", self.scale, "1 for wong-reece (it has no RFT scale)")
+        if key not in _SLIP_SINKAGE:
+            for attr in ("excavation", "bulldozing", "repose_angle"):
+                if getattr(self, attr) is not None:
+                    raise InputError(attr, getattr(self, attr), f"unset for {key} (a slip-sinkage parameter)")
+        if (
+            isinstance(self.phase_count, bool)
+            or not isinstance(self.phase_count, int)
+            or not (1 <= self.phase_count <= 4096)
+        ):
+            raise InputError("phase_count", self.phase_count, "an integer in [1, 4096]")
+
+    @property
+    def is_3d(self) -> bool:
+        return self.name in MODELS_3D
+
+    def slip_sinkage(self) -> Any:
+        """The :class:`~terradyn.rft.slip_sinkage.SlipSinkageParameters` of this model."""
+        from ..rft.slip_sinkage import SlipSinkageParameters
+
+        base = SlipSinkageParameters()
+        changes = {
+            k: v
+            for k, v in (
+                ("excavation", self.excavation),
+                ("bulldozing", self.bulldozing),
+                ("repose_angle", self.repose_angle),
+            )
+            if v is not None
+        }
+        return replace(base, **changes)
+
+
+@dataclass(frozen=True)
+class Prediction:
+    """Predicted quantities of one run (None where the model does not give one), or why it failed."""
+
+    index: int
+    solved: bool
+    values: dict[str, float | None] = field(default_factory=dict)
+    reason: str = ""
+
+
+@lru_cache(maxsize=32)
+def _material(name: str) -> Any:
+    from .. import materials
+
+    return materials.get(name)
+
+
+@lru_cache(maxsize=8)
+def _mesh(path: str, units: str) -> Any:
+    from ..geometry3d import load_mesh
+
+    return load_mesh(path, scale=1e-3 if units == "mm" else 1.0)
+
+
+@lru_cache(maxsize=64)
+def _body_2d(wheel: WheelSpec) -> Any:
+    from ..geometry import WheelCircular, WheelGrousered
+
+    assert wheel.radius is not None and wheel.width is not None
+    if wheel.shape == "circular":
+        return WheelCircular(wheel.radius, wheel.width)
+    return WheelGrousered(
+        wheel.radius, wheel.width, wheel.grouser_count, wheel.grouser_height, wheel.grouser_thickness
+    )
+
+
+@lru_cache(maxsize=64)
+def _mesh_3d(wheel: WheelSpec) -> Any:
+    from ..geometry3d import wheel_cylinder, wheel_grousered
+
+    if wheel.is_mesh:
+        assert wheel.mesh_file is not None
+        return _mesh(wheel.mesh_file, wheel.mesh_units)
+    assert wheel.radius is not None and wheel.width is not None
+    if wheel.shape == "circular":
+        return wheel_cylinder(wheel.radius, wheel.width, circumferential_resolution=360, axial_resolution=2)
+    return wheel_grousered(
+        wheel.radius, wheel.width, grouser_count=wheel.grouser_count, grouser_height=wheel.grouser_height,
+        grouser_thickness=wheel.grouser_thickness, circumferential_resolution=360, axial_resolution=2,
+    )  # fmt: skip
+
+
+def _speeds(row: RunRow, radius: float) -> tuple[float, float]:
+    """(omega [rad/s], travel speed [m/s]) of a run; a run given by slip alone runs at omega = 1 rad/s
+    (or, locked, at V = 1 x r per second)."""
+    if row.speeds_given:
+        return row.omega_r / radius, row.travel_speed
+    if row.omega_r > 0:
+        f = radius / row.omega_r
+        return 1.0, row.travel_speed * f
+    return 0.0, radius
+
+
+def predict_run(row: RunRow, model: ReplayModel) -> Prediction:
+    """Predict one run; a run the model cannot replay (solver failure, unsupported case) is returned
+    with ``solved = False`` and the reason."""
+    try:
+        values = _predict_3d(row, model) if model.is_3d else _predict_2d(row, model)
+    except TerradynError as exc:
+        return Prediction(row.index, False, {}, " ".join(str(exc).split()))
+    for k, v in values.items():
+        if v is not None and not math.isfinite(v):
+            return Prediction(row.index, False, {}, f"the model gave a non-finite {k}")
+    return Prediction(row.index, True, values)
+
+
+def predict_task(task: tuple[RunRow, ReplayModel]) -> Prediction:
+    """:func:`predict_run` of a (row, model) pair (module-level, for process pools and Dask)."""
+    return predict_run(*task)
+
+
+# ----------------------------------------------------------------------------------------------- 2D
+def _model_2d(model: ReplayModel, material: Any) -> Any:
+    if model.name == "wong-reece":
+        from ..terramechanics import WongReeceModel
+
+        return WongReeceModel(material)
+    scaled = material.with_zeta(material.zeta * model.scale) if model.scale != 1.0 else material
+    if model.name == "rft":
+        from ..rft import RFTModel
+
+        return RFTModel(scaled)
+    if model.name == "drft":
+        from ..rft import DRFTModel
+
+        return DRFTModel(scaled)
+    from ..rft.slip_sinkage import SlipSinkageRFTModel
+
+    return SlipSinkageRFTModel(scaled, parameters=model.slip_sinkage())
+
+
+def _predict_2d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
+    from ..kinematics import Pose2D, Twist2D
+    from ..locomotion import wheel_steady
+    from ..locomotion.steady import wheel_nominal_radius, wheel_rotation_period
+
+    if row.wheel.is_mesh:
+        raise InputError("model", model.name, "a 3D model (rft3d, rft3d-ss) for a mesh wheel")
+    if row.slip_angle != 0.0:
+        raise InputError("model", model.name, "a 3D model (rft3d, rft3d-ss) for a run with a slip angle")
+    body = _body_2d(row.wheel)
+    terrain = _model_2d(model, _material(row.medium))
+    radius = wheel_nominal_radius(body)
+    omega, speed = _speeds(row, radius)
+    period = wheel_rotation_period(body)
+    phases = 1 if period is None else model.phase_count
+    thetas = np.zeros(1) if period is None else np.arange(phases) * period / phases
+    if row.load is not None and omega > 0 and speed <= 2.0 * omega * radius:
+        res = wheel_steady(
+            body, terrain, row.load, 1.0 - speed / (omega * radius), omega=omega, phase_count=phases
+        )
+        return _values(res.drawbar_pull_N, res.drive_torque_Nm, res.sinkage_m, None, row.load)
+    twist = Twist2D(speed, 0.0, omega)
+    surface = float(getattr(terrain, "surface_level", 0.0))
+
+    def phase_wrench(z: float) -> np.ndarray:
+        return np.array([terrain.wrench(body, Pose2D(0.0, z, float(t)), twist).as_array() for t in thetas])
+
+    lowest = _lowest_2d(body, thetas)
+    if row.load is not None:
+        from .solve import solve_load
+
+        def mean_wrench(heights: np.ndarray) -> np.ndarray:
+            return np.array([phase_wrench(float(z)).mean(axis=0) for z in heights])
+
+        top = surface - float(lowest.min())
+        z = solve_load(mean_wrench, 1, row.load, surface, top, _what(row))
+    else:
+        assert row.prescribed_sinkage is not None
+        z = surface + radius - row.prescribed_sinkage
+    from .solve import state_at_height
+
+    w, sink = state_at_height(phase_wrench, lowest, z, surface)
+    return _values(float(w[0]), float(-w[2]), sink, None, float(w[1]))
+
+
+def _lowest_2d(body: Any, thetas: np.ndarray) -> np.ndarray:
+    pts = np.concatenate(body.outline())
+    c, s = np.cos(thetas)[:, None], np.sin(thetas)[:, None]
+    return np.asarray((-s * pts[None, :, 0] + c * pts[None, :, 1]).min(axis=1))
+
+
+def _what(row: RunRow) -> str:
+    ctl = f"load {row.load:g} N" if row.load is not None else f"sinkage {row.prescribed_sinkage:g} m"
+    return f"run {row.run_id!r} ({ctl} at slip {row.slip:g}, slip angle {math.degrees(row.slip_angle):g} deg)"
+
+
+def _values(
+    dp: float, torque: float, sinkage: float, side: float | None, vertical: float
+) -> dict[str, float | None]:
+    return {
+        "drawbar_pull_N": dp,
+        "drive_torque_Nm": torque,
+        "sinkage_m": sinkage,
+        "side_force_N": side,
+        "vertical_force_N": vertical,
+    }
+
+
+# ----------------------------------------------------------------------------------------------- 3D
+def _phases_3d(mesh: Any, wheel: WheelSpec, model: ReplayModel) -> np.ndarray:
+    from ..locomotion.steady3d import wheel_period_3d
+
+    if wheel.shape == "circular":
+        return np.zeros(1)
+    period = 2.0 * math.pi / wheel.grouser_count if wheel.shape == "grousered" else wheel_period_3d(mesh)
+    if period <= 2.0 * math.pi / _AXISYMMETRIC_ORDER:
+        return np.zeros(1)
+    return np.arange(model.phase_count) * period / model.phase_count
+
+
+def _predict_3d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
+    from ..locomotion.steady3d import _rotations_y, wheel_nominal_radius_3d, wheel_steady_3d
+    from ..rft.rft3d import agarwal2023_xi_material
+
+    mesh = _mesh_3d(row.wheel)
+    material = _material(row.medium)
+    xi = agarwal2023_xi_material(material) * model.scale
+    friction = material.surface_friction
+    friction = None if friction is None or friction == math.inf else float(friction)
+    radius = wheel_nominal_radius_3d(mesh)
+    omega, speed = _speeds(row, radius)
+    vx, vy = speed * math.cos(row.slip_angle), speed * math.sin(row.slip_angle)
+    thetas = _phases_3d(mesh, row.wheel, model)
+    direct = (
+        model.name == "rft3d" and row.load is not None and omega > 0 and abs(row.slip_angle) < 0.5 * math.pi
+        and vx <= 2.0 * omega * radius
+    )  # fmt: skip
+    if direct:
+        assert row.load is not None
+        res = wheel_steady_3d(
+            mesh, xi, row.load, 1.0 - vx / (omega * radius), slip_angle=row.slip_angle, omega=omega,
+            nominal_radius=radius, phase_count=thetas.size,
+            period=None if thetas.size == 1 else float(thetas[1] * thetas.size), surface_friction=friction,
+        )  # fmt: skip
+        return _values(res.drawbar_pull_N, res.drive_torque_Nm, res.sinkage_m, res.side_force_N, row.load)
+    rotations = _rotations_y(thetas)
+    linear = np.array([vx, vy, 0.0])
+    angular = np.array([0.0, omega, 0.0])
+    v = mesh.vertices
+    lowest = np.min(
+        -np.sin(thetas)[:, None] * v[None, :, 0] + np.cos(thetas)[:, None] * v[None, :, 2], axis=1
+    )
+    if model.name == "rft3d":
+        from ..rft.rft3d import rft3d_wrench_many
+
+        def many(heights: np.ndarray) -> np.ndarray:
+            n = heights.size * thetas.size
+            pos = np.zeros((n, 3))
+            pos[:, 2] = np.repeat(heights, thetas.size)
+            out = rft3d_wrench_many(
+                mesh, xi, pos, np.tile(rotations, (heights.size, 1, 1)), np.broadcast_to(linear, (n, 3)),
+                np.broadcast_to(angular, (n, 3)), surface_friction=friction,
+            )  # fmt: skip
+            return np.asarray(out).reshape(heights.size, thetas.size, 6)
+    else:
+        from ..rft.slip_sinkage import slip_sinkage_wrench_3d
+
+        params = model.slip_sinkage()
+
+        def many(heights: np.ndarray) -> np.ndarray:
+            return slip_sinkage_wrench_3d(
+                mesh, xi, heights, rotations, linear, angular, params, surface_friction=friction
+            )
+
+    if row.load is not None:
+        from .solve import solve_load
+
+        z = solve_load(lambda h: many(h).mean(axis=1), 2, row.load, 0.0, -float(lowest.min()), _what(row))
+    else:
+        assert row.prescribed_sinkage is not None
+        z = radius - row.prescribed_sinkage
+    from .solve import state_at_height
+
+    w, sink = state_at_height(lambda h: many(np.array([h]))[0], lowest, z, 0.0)
+    return _values(float(w[0]), float(-w[4]), sink, float(w[1]), float(w[2]))
+
+
+def quantity_names() -> tuple[str, ...]:
+    """The compared quantities, in table order."""
+    return tuple(QUANTITIES)
+
+
+def check_rows_for(model: ReplayModel, rows: Any) -> None:
+    """Raise when a model can replay none of the rows at all (e.g. a 2D model on a mesh-only table)."""
+    if model.is_3d:
+        return
+    if all(r.wheel.is_mesh for r in rows):
+        raise InputError("model", model.name, "a 3D model (rft3d, rft3d-ss) for a table of mesh wheels")
