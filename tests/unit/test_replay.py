@@ -201,7 +201,7 @@ def test_both_load_and_sinkage_or_slip_and_speeds_refused():
     with pytest.raises(InputError, match="exactly one of load_N and prescribed_sinkage_m"):
         runs_from_records([{**base, "load_N": 20, "prescribed_sinkage_m": 0.01, "slip": 0.1}])
     with pytest.raises(
-        InputError, match="column rim_speed_m_s = '0.1' is not allowed; expected empty when slip"
+        InputError, match=r"column rim_speed_m_s = '0\.1' is not allowed; expected empty when slip"
     ):
         runs_from_records(
             [{**base, "load_N": 20, "slip": 0.1, "rim_speed_m_s": 0.1, "carriage_speed_m_s": 0.1}]
