@@ -23,10 +23,12 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "wheel": ("wheel_cmd", "app", "Wheel locomotion: steady solves, sweeps, free rolling (RFT, DRFT, ...)."),
     "mpm": ("mpm_cmd", "app", "Plane-strain MPM continuum runs: intrusion and wheels."),
     "calibrate": ("calibrate_cmd", "app", "Fit RFT, Bekker or MPM parameters to measurements."),
+    "replay": ("replay_cmd", "replay", "Predict a table of single-wheel runs with any terrain model and compare."),
     "study": ("study_cmd", "app", "Reproducible studies (thesis experiments)."),
     "optimize": ("optimize_cmd", "app", "Design optimisation (flapped wheels)."),
     "validate": ("validate_cmd", "validate", "Check the models against invariants and reference values."),
     "demo": ("demo_cmd", "demo", "Run the headline study into a folder."),
+    "reproduce": ("reproduce_cmd", "reproduce", "The thesis items of chapters 3-9 as one HTML/Markdown report."),
     "warmup": ("warmup_cmd", "warmup", "Compile and cache every numerical kernel (run once after install)."),
 }
 

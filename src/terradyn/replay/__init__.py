@@ -5,7 +5,7 @@
 subset, and returns per-run residuals and metrics (MAE, RMSE, NRMSE, bias, Pearson r).
 """
 
-from .core import CalibrationResult, ReplayResult, calibrate, metrics, replay, split_runs
+from .core import CalibrationResult, ReplayResult, calibrate, calibrate_table, metrics, replay, split_runs
 from .predict import REPLAY_MODELS, Prediction, ReplayModel, predict_run
 from .table import COLUMNS, QUANTITIES, RunRow, RunsTable, WheelSpec, read_runs, rig_slip, runs_from_records
 
@@ -21,6 +21,7 @@ __all__ = [
     "RunsTable",
     "WheelSpec",
     "calibrate",
+    "calibrate_table",
     "metrics",
     "predict_run",
     "read_runs",

@@ -30,6 +30,7 @@ __all__ = [
     "CalibrationResult",
     "ReplayResult",
     "calibrate",
+    "calibrate_table",
     "metrics",
     "replay",
     "split_runs",
@@ -278,11 +279,33 @@ def _simplex(x0: np.ndarray) -> np.ndarray:
     return np.array(pts)
 
 
+def calibrate_table(
+    table: RunsTable,
+    model: ReplayModel,
+    calibrate_on: float | str,
+    *,
+    seed: int = 0,
+    on_evaluation: Callable[[int], None] | None = None,
+    max_evaluations: int = 120,
+) -> tuple[ReplayModel, CalibrationResult]:
+    """Split the table (:func:`split_runs`) and fit the model on the calibration runs."""
+    check_rows_for(model, table.rows)
+    cal, _ = split_runs(table, calibrate_on, seed=seed)
+    cal_set = set(cal)
+    fitted, fit = calibrate(
+        [r for r in table.rows if r.index in cal_set], model, on_evaluation=on_evaluation,
+        max_evaluations=max_evaluations,
+    )  # fmt: skip
+    held_ids = tuple(r.run_id for r in table.rows if r.index not in cal_set)
+    return fitted, replace(fit, held_out_runs=held_ids)
+
+
 def replay(
     table: RunsTable,
     model: ReplayModel,
     *,
     calibrate_on: float | str | None = None,
+    calibration: CalibrationResult | None = None,
     seed: int = 0,
     group_by: str | None = None,
     scheduler: str = "serial",
@@ -292,28 +315,31 @@ def replay(
 ) -> ReplayResult:
     """Replay every run of ``table`` through ``model`` (after calibrating it on a subset, if asked).
 
-    ``scheduler``/``workers`` as :func:`terradyn.parallel.map_items` ("serial", "processes" on local
-    cores, "local" Dask cluster or a Dask scheduler address); ``on_done(n)`` reports finished runs.
-    Calibration evaluations run in this process. With ``calibrate_on`` the metrics are given for the
-    calibration and the held-out sets; otherwise for all runs.
+    ``calibrate_on``: fit first (:func:`calibrate_table`, seeded by ``seed``); or pass the result of
+    an earlier :func:`calibrate_table` as ``calibration`` with its fitted model. ``scheduler`` and
+    ``workers`` as :func:`terradyn.parallel.map_items` ("serial", "processes" on local cores, "local"
+    Dask cluster or a Dask scheduler address); ``on_done(n)`` reports finished runs. Calibration
+    evaluations run in this process. With a calibration the metrics are given for the calibration
+    and the held-out sets; otherwise for all runs.
     """
     if not isinstance(table, RunsTable):
         raise InputError("table", type(table).__name__, "a RunsTable (terradyn.replay.read_runs)")
     if group_by is not None and group_by not in table.extra_columns and group_by != "medium":
         raise InputError("group_by", group_by, f"a column of the table: {[*table.extra_columns, 'medium']}")
     check_rows_for(model, table.rows)
-    sets: dict[int, str] = {}
-    fit = None
+    if calibrate_on is not None and calibration is not None:
+        raise InputError("calibration", "given twice", "calibrate_on or an earlier calibration, not both")
     if calibrate_on is not None:
-        cal, held = split_runs(table, calibrate_on, seed=seed)
-        cal_rows = [r for r in table.rows if r.index in set(cal)]
-        model, fit = calibrate(cal_rows, model, on_evaluation=on_evaluation)
-        held_ids = tuple(r.run_id for r in table.rows if r.index in set(held))
-        fit = replace(fit, held_out_runs=held_ids)
-        sets = {i: "calibration" for i in cal} | {i: "held-out" for i in held}
+        model, calibration = calibrate_table(
+            table, model, calibrate_on, seed=seed, on_evaluation=on_evaluation
+        )
+    sets: dict[int, str] = {}
+    if calibration is not None:
+        cal_ids = set(calibration.calibration_runs)
+        sets = {r.index: "calibration" if r.run_id in cal_ids else "held-out" for r in table.rows}
     preds = _predict(table.rows, model, scheduler, workers, on_done)
     runs = _records(table.rows, preds, sets, table.extra_columns)
     return ReplayResult(
-        runs, metrics(runs, group_by=group_by), model, fit,
+        runs, metrics(runs, group_by=group_by), model, calibration,
         {"source": table.source, "model": model.name, "scale": model.scale, "run_count": len(table)},
     )  # fmt: skip

@@ -45,9 +45,10 @@ def design_runs(
         for load in loads:
             for angle in slip_angles_deg:
                 for s in slips:
+                    run_id = f"{w['wheel_type']}-W{load:g}-a{angle:g}-s{s:+.2f}"
                     out.append(
-                        {"run_id": f"{w['wheel_type']}-W{load:g}-a{angle:g}-s{s:+.2f}", **w, "medium": medium,
-                         "radius_m": radius, "width_m": width, "load_N": load, "slip": s, "slip_angle_deg": angle}
+                        {"run_id": run_id, **w, "medium": medium, "radius_m": radius, "width_m": width,
+                         "load_N": load, "slip": s, "slip_angle_deg": angle}
                     )  # fmt: skip
     return out
 
