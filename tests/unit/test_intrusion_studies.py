@@ -60,7 +60,23 @@ def test_wedge_flattens_to_plate_and_superposition_is_exact():
     t = wedges_versus_plate(MS, heights=[1e-4, 0.02, 0.08], element_size=2e-4)
     ratio = t.columns["ratio"]
     assert ratio[0] == pytest.approx(1.0, abs=0.01)
-    assert ratio[0] > ratio[1] > ratio[2] > 0
+    assert ratio[2] > ratio[1] > 0  # the slender wedge reaches far below the plate
+    np.testing.assert_allclose(t.columns["wedge_force_x_N"], 0.0, atol=1e-9)  # symmetric: no lateral force
     s = superposition(MS, Plate(0.02, 0.02), WheelCircular(0.01, 0.02), separation=0.05, direction=0.7)
     for key in ("force_x_N", "force_z_N", "torque_y_Nm"):
         assert s.columns[key][3] == pytest.approx(s.columns[key][2], rel=1e-12, abs=1e-12)
+
+
+def test_wedge_equal_projected_depth_ratio_near_one():
+    """At equal base (projected) depth the RFT force of a symmetric wedge no taller than its base is
+    within 7 % of the plate's, whatever its angle; an asymmetric wedge gets a lateral force whose sign
+    flips with its tip offset."""
+    from terradyn.studies.intrusion import wedges_versus_plate
+
+    t = wedges_versus_plate(MS, heights=[0.005, 0.01, 0.02, 0.04], tip_offsets=[-0.01, 0.0, 0.01])
+    c = t.columns
+    sym = c["tip_offset_m"] == 0.0
+    np.testing.assert_allclose(c["ratio"][sym], 1.0, atol=0.07)
+    left, right = c["lateral_ratio"][c["tip_offset_m"] < 0], c["lateral_ratio"][c["tip_offset_m"] > 0]
+    np.testing.assert_allclose(left, -right, rtol=1e-9, atol=1e-12)
+    assert np.all(right > 0)

@@ -49,9 +49,12 @@ from ..results import TableResult
 __all__ = [
     "HighSpeedResult",
     "HighSpeedWheel",
+    "OnsetFit",
+    "fit_onset_criterion",
     "high_speed_initial_conditions",
     "high_speed_onset_sensitivity",
     "high_speed_sweep",
+    "plot_onset_criterion",
     "slip_onset",
 ]
 
@@ -100,8 +103,9 @@ class HighSpeedWheel:
     def body(self) -> WheelGrousered:
         """The wheel body; outer radius l / 2."""
         h = self.lug_height
-        return WheelGrousered(0.5 * self.outer_diameter - h, self.width, int(self.grouser_count), h,
-                              self.grouser_thickness)
+        return WheelGrousered(
+            0.5 * self.outer_diameter - h, self.width, int(self.grouser_count), h, self.grouser_thickness
+        )
 
     def mass(self, critical_density: float) -> float:
         """m = mass_ratio rho_c l^2 W [kg]."""
@@ -153,23 +157,34 @@ def slip_onset(
     g = check_positive("gravity", gravity)
     ell = check_positive("outer_diameter", outer_diameter)
     norm = math.sqrt(ell / g)
-    out: dict[str, Any] = {"low_speed_slip": float(s[0]), "low_speed_sinkage_m": float(d[0]),
-                           "slip_margin": margin}
+    out: dict[str, Any] = {
+        "low_speed_slip": float(s[0]),
+        "low_speed_sinkage_m": float(d[0]),
+        "slip_margin": margin,
+    }
     above = np.nonzero(s >= s[0] + margin)[0]
     if above.size:
         k = int(above[0])
         w_c = float(np.interp(s[0] + margin, [s[k - 1], s[k]], [w[k - 1], w[k]]))
         r = 0.5 * ell
-        out.update(omega_onset_rad_s=w_c, omega_onset_normalised=w_c * norm, froude_onset=r * w_c**2 / g,
-                   drop_to_sinkage_onset=float(r * r * w_c**2 / (g * d[0])))
+        out.update(
+            omega_onset_rad_s=w_c,
+            omega_onset_normalised=w_c * norm,
+            froude_onset=r * w_c**2 / g,
+            drop_to_sinkage_onset=float(r * r * w_c**2 / (g * d[0])),
+        )
     else:
-        out.update(omega_onset_rad_s=None, omega_onset_normalised=None, froude_onset=None,
-                   drop_to_sinkage_onset=None)
+        out.update(
+            omega_onset_rad_s=None, omega_onset_normalised=None, froude_onset=None, drop_to_sinkage_onset=None
+        )
     rate = np.diff(s) / np.diff(w * norm)
     j = int(np.argmax(rate))
     steep = float(0.5 * (w[j] + w[j + 1])) if rate[j] > margin else None
-    out.update(omega_steepest_rad_s=steep, omega_steepest_normalised=None if steep is None else steep * norm,
-               max_slope=float(rate[j]))
+    out.update(
+        omega_steepest_rad_s=steep,
+        omega_steepest_normalised=None if steep is None else steep * norm,
+        max_slope=float(rate[j]),
+    )
     return out
 
 
@@ -186,8 +201,11 @@ def _material(material: str | Material, gravity: float, medium_follows_gravity: 
 
 def _omegas(omegas: Sequence[float] | np.ndarray | None, reduced: bool, ell: float, g: float) -> np.ndarray:
     if omegas is None:
-        hat = np.array([0.15, 0.5, 0.8, 1.1, 1.5, 2.2]) if reduced else np.array(
-            [0.15, 0.3, 0.45, 0.6, 0.75, 0.9, 1.05, 1.2, 1.4, 1.7, 2.0, 2.4])
+        hat = (
+            np.array([0.15, 0.5, 0.8, 1.1, 1.5, 2.2])
+            if reduced
+            else np.array([0.15, 0.3, 0.45, 0.6, 0.75, 0.9, 1.05, 1.2, 1.4, 1.7, 2.0, 2.4])
+        )
         return hat * math.sqrt(g / ell)
     w = np.asarray(omegas, dtype=float)
     if w.ndim != 1 or w.size < 2 or not np.all(np.isfinite(w)) or np.any(w <= 0) or np.any(np.diff(w) <= 0):
@@ -195,17 +213,36 @@ def _omegas(omegas: Sequence[float] | np.ndarray | None, reduced: bool, ell: flo
     return w
 
 
-def _steady_run(wheel: HighSpeedWheel, mat: Material, model: str, omega: float, *, gravity: float,
-                initial_velocity: float, ramp: float | None, settle_revolutions: float,
-                average_revolutions: float) -> dict[str, float]:
+def _steady_run(
+    wheel: HighSpeedWheel,
+    mat: Material,
+    model: str,
+    omega: float,
+    *,
+    gravity: float,
+    initial_velocity: float,
+    ramp: float | None,
+    settle_revolutions: float,
+    average_revolutions: float,
+) -> dict[str, float]:
     body = wheel.body()
     elements = body.discretize_counts(int(wheel.rim_elements), int(wheel.face_elements))
     mass = wheel.mass(float(mat.critical_density))  # type: ignore[arg-type]
     ramp_time = 0.0 if ramp is None else omega / ramp
     duration = max(1.0, ramp_time + 2.0 * math.pi * (settle_revolutions + average_revolutions) / omega)
-    run = simulate_wheel(body, mat, model=model, mass=mass, omega=omega, ramp=ramp, gravity=gravity,
-                         duration=duration, elements=elements, initial_velocity=initial_velocity,
-                         output_every=2)
+    run = simulate_wheel(
+        body,
+        mat,
+        model=model,
+        mass=mass,
+        omega=omega,
+        ramp=ramp,
+        gravity=gravity,
+        duration=duration,
+        elements=elements,
+        initial_velocity=initial_velocity,
+        output_every=2,
+    )
     return run.steady_summary(revolutions=average_revolutions)
 
 
@@ -276,9 +313,21 @@ def high_speed_sweep(
         settle_revolutions = 3.0 if reduced else 6.0
     check_positive("settle_revolutions", settle_revolutions, allow_zero=True)
     check_positive("average_revolutions", average_revolutions)
-    rows: dict[str, list[Any]] = {k: [] for k in (
-        "model", "omega_rad_s", "omega_normalised", "forward_velocity_m_s", "velocity_normalised", "slip",
-        "sinkage_m", "sinkage_normalised", "drive_torque_Nm", "froude")}
+    rows: dict[str, list[Any]] = {
+        k: []
+        for k in (
+            "model",
+            "omega_rad_s",
+            "omega_normalised",
+            "forward_velocity_m_s",
+            "velocity_normalised",
+            "slip",
+            "sinkage_m",
+            "sinkage_normalised",
+            "drive_torque_Nm",
+            "froude",
+        )
+    }
     onsets: dict[str, dict[str, Any]] = {}
     done, total = 0, len(names) * len(w)
     for name in names:
@@ -287,26 +336,45 @@ def high_speed_sweep(
             if progress is not None:
                 progress(done, total)
             done += 1
-            s = _steady_run(wheel, mat, name, float(omega), gravity=g, initial_velocity=initial_velocity,
-                            ramp=ramp, settle_revolutions=settle_revolutions,
-                            average_revolutions=average_revolutions)
+            s = _steady_run(
+                wheel,
+                mat,
+                name,
+                float(omega),
+                gravity=g,
+                initial_velocity=initial_velocity,
+                ramp=ramp,
+                settle_revolutions=settle_revolutions,
+                average_revolutions=average_revolutions,
+            )
             slips.append(s["slip"])
             sinks.append(s["sinkage_m"])
             v = s["forward_velocity_m_s"]
-            for key, value in (("model", name), ("omega_rad_s", omega),
-                               ("omega_normalised", omega * math.sqrt(ell / g)),
-                               ("forward_velocity_m_s", v), ("velocity_normalised", v / math.sqrt(g * ell)),
-                               ("slip", s["slip"]), ("sinkage_m", s["sinkage_m"]),
-                               ("sinkage_normalised", s["sinkage_m"] / ell),
-                               ("drive_torque_Nm", s["drive_torque_Nm"]),
-                               ("froude", 0.5 * ell * omega**2 / g)):
+            for key, value in (
+                ("model", name),
+                ("omega_rad_s", omega),
+                ("omega_normalised", omega * math.sqrt(ell / g)),
+                ("forward_velocity_m_s", v),
+                ("velocity_normalised", v / math.sqrt(g * ell)),
+                ("slip", s["slip"]),
+                ("sinkage_m", s["sinkage_m"]),
+                ("sinkage_normalised", s["sinkage_m"] / ell),
+                ("drive_torque_Nm", s["drive_torque_Nm"]),
+                ("froude", 0.5 * ell * omega**2 / g),
+            ):
                 rows[key].append(value)
         onsets[name] = slip_onset(w, slips, sinks, outer_diameter=ell, gravity=g, slip_margin=slip_margin)
-    meta = {"study": "high-speed slip onset", "material": mat.name, "gravity_m_s2": g,
-            "wheel": {k: getattr(wheel, k) for k in wheel.__dataclass_fields__},
-            "mass_kg": wheel.mass(float(mat.critical_density)),  # type: ignore[arg-type]
-            "initial_velocity_m_s": initial_velocity, "ramp_rad_s2": ramp, "onsets": onsets,
-            "citation": _CITATION}
+    meta = {
+        "study": "high-speed slip onset",
+        "material": mat.name,
+        "gravity_m_s2": g,
+        "wheel": {k: getattr(wheel, k) for k in wheel.__dataclass_fields__},
+        "mass_kg": wheel.mass(float(mat.critical_density)),  # type: ignore[arg-type]
+        "initial_velocity_m_s": initial_velocity,
+        "ramp_rad_s2": ramp,
+        "onsets": onsets,
+        "citation": _CITATION,
+    }
     table = TableResult({k: np.asarray(v) for k, v in rows.items()}, meta)
     main = "drft" if "drft" in onsets else names[0]
     return HighSpeedResult(table, onsets[main], onsets)
@@ -361,9 +429,20 @@ def high_speed_onset_sensitivity(
         if key not in _DEFAULT_VARIATIONS:
             raise InputError("variations", key, f"one of {sorted(_DEFAULT_VARIATIONS)}")
         cases.extend((key, float(v)) for v in values)
-    rows: dict[str, list[Any]] = {k: [] for k in (
-        "parameter", "value", "omega_onset_rad_s", "omega_onset_normalised", "froude_onset",
-        "drop_to_sinkage_onset", "low_speed_slip", "low_speed_sinkage_m", "low_speed_sinkage_normalised")}
+    rows: dict[str, list[Any]] = {
+        k: []
+        for k in (
+            "parameter",
+            "value",
+            "omega_onset_rad_s",
+            "omega_onset_normalised",
+            "froude_onset",
+            "drop_to_sinkage_onset",
+            "low_speed_slip",
+            "low_speed_sinkage_m",
+            "low_speed_sinkage_normalised",
+        )
+    }
     no_onset = []
     for key, value in cases:
         wheel_k, g = base, g0
@@ -378,10 +457,19 @@ def high_speed_onset_sensitivity(
         elif key == "mass_ratio":
             wheel_k = replace(base, mass_ratio=value)
         ell = wheel_k.outer_diameter
-        hat = np.asarray(omega_normalised if omega_normalised is not None else
-                         _omegas(None, reduced, 1.0, 1.0), dtype=float)
-        res = high_speed_sweep(material=material, models=("drft",), omegas=hat * math.sqrt(g / ell),
-                               wheel=wheel_k, gravity=g, slip_margin=slip_margin, reduced=reduced)
+        hat = np.asarray(
+            omega_normalised if omega_normalised is not None else _omegas(None, reduced, 1.0, 1.0),
+            dtype=float,
+        )
+        res = high_speed_sweep(
+            material=material,
+            models=("drft",),
+            omegas=hat * math.sqrt(g / ell),
+            wheel=wheel_k,
+            gravity=g,
+            slip_margin=slip_margin,
+            reduced=reduced,
+        )
         on = res.onset
         if on["omega_onset_rad_s"] is None:
             no_onset.append(f"{key}={value}")
@@ -392,8 +480,12 @@ def high_speed_onset_sensitivity(
         rows["low_speed_slip"].append(on["low_speed_slip"])
         rows["low_speed_sinkage_m"].append(on["low_speed_sinkage_m"])
         rows["low_speed_sinkage_normalised"].append(on["low_speed_sinkage_m"] / ell)
-    meta = {"study": "high-speed onset sensitivity", "no_onset": no_onset, "slip_margin": slip_margin,
-            "citation": _CITATION}
+    meta = {
+        "study": "high-speed onset sensitivity",
+        "no_onset": no_onset,
+        "slip_margin": slip_margin,
+        "citation": _CITATION,
+    }
     columns = {k: np.asarray(v) for k, v in rows.items()}
     return _table_allowing_nan(columns, meta)
 
@@ -434,23 +526,195 @@ def high_speed_initial_conditions(
     g = check_positive("gravity", gravity)
     mat = _material(material, g, True)
     ell = wheel.outer_diameter
-    rows: dict[str, list[float]] = {k: [] for k in (
-        "omega_normalised", "initial_velocity_normalised", "ramp_normalised", "velocity_normalised", "slip",
-        "sinkage_normalised")}
+    rows: dict[str, list[float]] = {
+        k: []
+        for k in (
+            "omega_normalised",
+            "initial_velocity_normalised",
+            "ramp_normalised",
+            "velocity_normalised",
+            "slip",
+            "sinkage_normalised",
+        )
+    }
     for hat in omegas_normalised:
         omega = check_positive("omegas_normalised", hat) * math.sqrt(g / ell)
         for v0 in initial_velocities_normalised:
             for ramp in ramps_normalised:
                 rate = None if ramp is None else check_positive("ramps_normalised", ramp) * g / ell
-                s = _steady_run(wheel, mat, model, omega, gravity=g,
-                                initial_velocity=check_finite("initial_velocities_normalised", v0)
-                                * math.sqrt(g * ell), ramp=rate, settle_revolutions=settle_revolutions,
-                                average_revolutions=2.0)
-                for key, value in (("omega_normalised", hat), ("initial_velocity_normalised", v0),
-                                   ("ramp_normalised", 0.0 if ramp is None else ramp),
-                                   ("velocity_normalised", s["forward_velocity_m_s"] / math.sqrt(g * ell)),
-                                   ("slip", s["slip"]), ("sinkage_normalised", s["sinkage_m"] / ell)):
+                s = _steady_run(
+                    wheel,
+                    mat,
+                    model,
+                    omega,
+                    gravity=g,
+                    initial_velocity=check_finite("initial_velocities_normalised", v0) * math.sqrt(g * ell),
+                    ramp=rate,
+                    settle_revolutions=settle_revolutions,
+                    average_revolutions=2.0,
+                )
+                for key, value in (
+                    ("omega_normalised", hat),
+                    ("initial_velocity_normalised", v0),
+                    ("ramp_normalised", 0.0 if ramp is None else ramp),
+                    ("velocity_normalised", s["forward_velocity_m_s"] / math.sqrt(g * ell)),
+                    ("slip", s["slip"]),
+                    ("sinkage_normalised", s["sinkage_m"] / ell),
+                ):
                     rows[key].append(float(value))
-    meta = {"study": "high-speed initial conditions", "model": model, "material": mat.name,
-            "citation": _CITATION}
+    meta = {
+        "study": "high-speed initial conditions",
+        "model": model,
+        "material": mat.name,
+        "citation": _CITATION,
+    }
     return TableResult({k: np.asarray(v) for k, v in rows.items()}, meta)
+
+
+@dataclass(frozen=True, eq=False)
+class OnsetFit:
+    """The slip-onset criterion fitted over sensitivity sweeps.
+
+    Attributes
+    ----------
+    formula : the fitted criterion as text, e.g. ``omega_c sqrt(l/g) = 0.61 (h/l)^0.11 M^-0.05 N^0.02``
+    coefficients : prefactor ``C`` and the exponent of each group that varied (``h_over_l``,
+        ``mass_ratio``, ``grouser_count``)
+    r_squared : of log(omega_c sqrt(l/g)) [-]; max_relative_error : of omega_c sqrt(l/g) [-]
+    alternative : the one-constant form ``delta_h_c / d_0 = K`` (structural surface drop at onset over
+        low-speed sinkage, i.e. omega_c sqrt(l/g) = sqrt(4 K d_0 / l)) with its own fit quality
+    table : one row per case: the groups, ``omega_onset_normalised`` observed and ``predicted``
+    """
+
+    formula: str
+    coefficients: dict[str, float]
+    r_squared: float
+    max_relative_error: float
+    alternative: dict[str, Any]
+    table: TableResult
+
+
+_REDUCED_FIT_VARIATIONS: dict[str, Sequence[float]] = {
+    "grouser_height": (0.009, 0.027),
+    "mass_ratio": (3.0, 12.0),
+}
+
+
+def fit_onset_criterion(
+    *,
+    variations: dict[str, Sequence[float]] | None = None,
+    material: str | Material = "poppy-cp",
+    slip_margin: float = 0.05,
+    reduced: bool = False,
+) -> OnsetFit:
+    """Fit the DRFT slip onset over :func:`high_speed_onset_sensitivity` sweeps as a formula.
+
+    The onset spin is made dimensionless as omega_c sqrt(l/g) (l outer diameter) and fitted by least
+    squares in logs as a power law of the dimensionless groups that vary among the cases: grouser
+    height over diameter h/l, mass ratio M = m / (rho_c l^2 W) and grouser count N. Gravity enters
+    only through sqrt(l/g) (the cases at other g check that scaling: their normalised onset equals the
+    reference's). Also fitted: the one-constant criterion delta_h_c / d_0 = K, the structural surface
+    drop r (r omega_c^2 / g) at onset over the low-speed sinkage d_0, i.e.
+    omega_c sqrt(l/g) = sqrt(4 K d_0 / l). Both are printed with R^2 (of the log onset) and the
+    largest relative error. Cases without an onset are left out (listed in the table metadata).
+
+    Parameters
+    ----------
+    variations : parameter -> values as for :func:`high_speed_onset_sensitivity` (default: all five
+        parameters at two values each; ``reduced``: grouser height and mass ratio, two values each)
+    material, slip_margin : as :func:`high_speed_sweep`; reduced : the fast sweeps (6 spin rates)
+    """
+    chosen = variations if variations is not None else (_REDUCED_FIT_VARIATIONS if reduced else None)
+    sens = high_speed_onset_sensitivity(
+        variations=chosen, material=material, slip_margin=slip_margin, reduced=reduced
+    )
+    c = sens.columns
+    base = HighSpeedWheel()
+    keep = c["omega_onset_normalised"] > 0
+    if int(keep.sum()) < 3:
+        raise InputError("variations", chosen, "sweeps with a slip onset in at least three cases")
+    groups: dict[str, list[float]] = {"h_over_l": [], "mass_ratio": [], "grouser_count": []}
+    for par, val in zip(c["parameter"].tolist(), c["value"].tolist(), strict=True):
+        ell = val if par == "outer_diameter" else base.outer_diameter
+        h = val if par == "grouser_height" else base.grouser_height
+        groups["h_over_l"].append(h / ell)
+        groups["mass_ratio"].append(val if par == "mass_ratio" else base.mass_ratio)
+        groups["grouser_count"].append(val if par == "grouser_count" else float(base.grouser_count))
+    y = np.log(c["omega_onset_normalised"][keep])
+    logs = {k: np.log(np.asarray(v)[keep]) for k, v in groups.items()}
+    varying = [k for k, v in logs.items() if np.ptp(v) > 1e-9]
+    design = np.column_stack([np.ones_like(y)] + [logs[k] for k in varying])
+    coef, *_ = np.linalg.lstsq(design, y, rcond=None)
+
+    def quality(pred_log: np.ndarray) -> tuple[float, float]:
+        ss_res = float(np.sum((y - pred_log) ** 2))
+        ss_tot = float(np.sum((y - y.mean()) ** 2))
+        r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 else 1.0
+        return r2, float(np.max(np.abs(np.exp(pred_log - y) - 1.0)))
+
+    pred = design @ coef
+    r2, err = quality(pred)
+    symbols = {"h_over_l": "(h/l)", "mass_ratio": "M", "grouser_count": "N"}
+    formula = f"omega_c sqrt(l/g) = {math.exp(coef[0]):.3g}" + "".join(
+        f" {symbols[k]}^{a:+.3f}" for k, a in zip(varying, coef[1:], strict=True)
+    )
+    d0 = c["low_speed_sinkage_normalised"][keep]  # d_0 / l
+    k_const = float(np.exp(np.mean(2.0 * y - np.log(4.0 * d0))))  # least squares in logs
+    alt_pred = 0.5 * np.log(4.0 * k_const * d0)
+    alt_r2, alt_err = quality(alt_pred)
+    alternative = {
+        "formula": f"delta_h_c / d_0 = {k_const:.3g}, i.e. omega_c sqrt(l/g) = sqrt(4 x "
+        f"{k_const:.3g} d_0 / l)",
+        "K": k_const,
+        "r_squared": alt_r2,
+        "max_relative_error": alt_err,
+    }
+    table = TableResult(
+        {
+            "parameter": c["parameter"][keep],
+            "value": c["value"][keep],
+            **{k: np.asarray(v)[keep] for k, v in groups.items()},
+            "low_speed_sinkage_normalised": d0,
+            "omega_onset_normalised": c["omega_onset_normalised"][keep],
+            "predicted": np.exp(pred),
+            "predicted_alternative": np.exp(alt_pred),
+        },
+        {
+            "study": "high-speed onset criterion",
+            "no_onset": sens.metadata.get("no_onset", []),
+            "formula": formula,
+            "citation": _CITATION,
+        },
+    )
+    coefficients = {"C": math.exp(coef[0]), **{k: float(a) for k, a in zip(varying, coef[1:], strict=True)}}
+    return OnsetFit(formula, coefficients, r2, err, alternative, table)
+
+
+def plot_onset_criterion(fit: OnsetFit) -> Any:
+    """Predicted against observed omega_c sqrt(l/g) for both fitted criteria (parity plot); the Figure."""
+    import matplotlib.pyplot as plt
+
+    c = fit.table.columns
+    fig, ax = plt.subplots(figsize=(5.6, 4.6), layout="constrained")
+    obs = c["omega_onset_normalised"]
+    ax.plot(obs, c["predicted"], "o", label=f"power law, R$^2$ = {fit.r_squared:.3f}")
+    ax.plot(
+        obs,
+        c["predicted_alternative"],
+        "s",
+        mfc="none",
+        label=f"delta_h/d_0 = K, R$^2$ = {fit.alternative['r_squared']:.3f}",
+    )
+    for x, y, name in zip(obs, c["predicted"], c["parameter"].tolist(), strict=True):
+        ax.annotate(name, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points")
+    lo, hi = (
+        float(min(obs.min(), c["predicted"].min())) * 0.95,
+        float(max(obs.max(), c["predicted"].max())) * 1.05,
+    )
+    ax.plot([lo, hi], [lo, hi], "k:", lw=0.8, label="equality")
+    ax.set_xlabel(r"DRFT onset $\omega_c \sqrt{\ell/g}$ (sweep) [-]")
+    ax.set_ylabel(r"criterion $\omega_c \sqrt{\ell/g}$ (fit) [-]")
+    ax.set_title(fit.formula, fontsize=8)
+    ax.grid(True, alpha=0.35)
+    ax.legend(fontsize=7)
+    return fig

@@ -181,7 +181,10 @@ def _wedges(p: WedgeParams) -> StudyOutput:
             label=f"tip offset {e * 1e3:g} mm",
         )
     ax.set_xlabel("tip half-angle [deg]")
-    ax.set_ylabel("wedge force / plate force [-]")
+    ax.set_ylabel("wedge / plate vertical force [-]")
+    ax.axhline(1.0, color="0.6", lw=0.8, ls=":")
+    ax.set_title(f"RFT, {mat.name}: wedge base and plate at {p.depth_m * 1e3:g} mm (equal projected depth)")
+    ax.grid(True, alpha=0.35)
     ax.legend()
     out = StudyOutput({"wedges": t}, {"wedges": fig})
     out.summary = [{k: v for k, v in r.items() if k != "plate_force_z_N"} for r in t.records()]
@@ -220,7 +223,7 @@ STUDIES: dict[str, tuple[type[_Params], Callable[[Any], StudyOutput], str]] = {
     "plate-depth": (PlateDepthParams, _plate_depth, "RFT force on a plate versus depth, several media"),
     "alpha-map": (AlphaMapParams, _alpha_map, "alpha_x, alpha_z of a plate over angle and direction"),
     "lift-drag": (LiftDragParams, _lift_drag, "drag and lift of cylinder, square, half-cylinders"),
-    "wedges": (WedgeParams, _wedges, "wedges versus a plate of the same projected width"),
+    "wedges": (WedgeParams, _wedges, "wedges versus a plate of the same projected width and depth"),
     "superposition": (SuperpositionParams, _superposition, "two bodies apart = sum of each (RFT)"),
 }
 

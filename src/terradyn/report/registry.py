@@ -1,0 +1,387 @@
+"""The thesis items the report reproduces, the models each applies and the rows that run them.
+
+Every item names the thesis figure or table it stands beside (``label``; numbers that could not be
+checked against the thesis are written as the section, e.g. "Sec. 7 figure", never guessed), a
+caption, the terradyn study or function that reproduces it, and the models that apply. A *row* is
+one model's computation for one item: a module-level function ``row(quick) -> ItemOutput``.
+Rows for RFT, DRFT, Wong-Reece and the closed-form references ship here; MPM and DEM rows are
+plugged in with :func:`register_row` by the modules that provide them. A model listed for an item
+without a registered row shows as *pending* in the report; DEM rows are listed only when
+``terradyn.dem`` imports.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..errors import InputError
+
+__all__ = [
+    "CHAPTERS",
+    "ITEMS",
+    "Finding",
+    "ItemOutput",
+    "ThesisItem",
+    "dem_available",
+    "item",
+    "register_row",
+    "row_for",
+    "rows_of",
+]
+
+#: chapters the report covers (thesis chapters 3-9)
+CHAPTERS = (3, 4, 6, 7, 8, 9)
+_CHAPTER_TITLES = {
+    3: "Classical terramechanics (Bekker, Wong-Reece)",
+    4: "Granular Resistive Force Theory",
+    6: "Wheels: force-slip of rigid wheels, flapped wheels",
+    7: "Wheel design optimisation",
+    8: "High-speed wheels: the onset of the slip rise",
+    9: "General intrusions: wedges, superposition, lift and drag, packing",
+}
+
+
+def chapter_title(chapter: int) -> str:
+    """Title the report gives a thesis chapter."""
+    return _CHAPTER_TITLES[chapter]
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One line of "what agrees / what does not", its numbers computed by the run.
+
+    ``verdict`` is ``agrees``, ``disagrees`` or ``info`` (a measured fact with no reference)."""
+
+    text: str
+    verdict: str = "info"
+
+    def __post_init__(self) -> None:
+        if self.verdict not in ("agrees", "disagrees", "info"):
+            raise InputError("finding.verdict", self.verdict, "agrees, disagrees or info")
+
+
+@dataclass
+class ItemOutput:
+    """What a row returns: figures (name -> matplotlib figure), settings, metrics, findings and
+    optional small tables (name -> list of row dicts)."""
+
+    figures: dict[str, Any] = field(default_factory=dict)
+    settings: dict[str, Any] = field(default_factory=dict)
+    metrics: dict[str, Any] = field(default_factory=dict)
+    findings: list[Finding] = field(default_factory=list)
+    tables: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class ThesisItem:
+    """A figure or table of the thesis and how terradyn reproduces it.
+
+    Attributes
+    ----------
+    key : short id used for caches and anchors (``fig-6-8``)
+    chapter : thesis chapter (3-9)
+    label : the thesis number ("Fig. 6-8", "Table 6.1"), or the section when the number is not known
+    caption : what the item shows
+    study : the terradyn study / function that reproduces it
+    models : models that apply (``rft``, ``drft``, ``wong-reece``, ``bekker``, ``theory``, ``mpm``,
+        ``dem``), in display order
+    references : citations the item is compared with
+    """
+
+    key: str
+    chapter: int
+    label: str
+    caption: str
+    study: str
+    models: tuple[str, ...]
+    references: tuple[str, ...] = ()
+
+
+_AGARWAL_2019 = (
+    "S. Agarwal, C. Senatore, T. Zhang, M. Kingsbury, K. Iagnemma, D. I. Goldman, K. Kamrin, "
+    "J. Terramechanics 85, 1-14 (2019), doi:10.1016/j.jterra.2019.04.001"
+)
+_AGARWAL_2021 = (
+    "S. Agarwal, A. Karsai, D. I. Goldman, K. Kamrin, Sci. Adv. 7, eabe0631 (2021), "
+    "doi:10.1126/sciadv.abe0631"
+)
+_LI_2013 = "C. Li, T. Zhang, D. I. Goldman, Science 339, 1408-1412 (2013), doi:10.1126/science.1229163"
+_WONG_REECE = "J. Y. Wong, A. R. Reece, J. Terramechanics 4(1), 81-98 (1967)"
+_BEKKER = "M. G. Bekker, Introduction to Terrain-Vehicle Systems, Univ. Michigan Press (1969)"
+_DING_2011 = "Y. Ding, N. Gravish, D. I. Goldman, Phys. Rev. Lett. 106, 028001 (2011)"
+_GRAVISH_2010 = "N. Gravish, P. B. Umbanhowar, D. I. Goldman, Phys. Rev. Lett. 105, 128301 (2010)"
+_THESIS = "S. Agarwal, MS thesis, MIT (2019)"
+
+ITEMS: tuple[ThesisItem, ...] = (
+    ThesisItem(
+        "ch3-pressure-sinkage",
+        3,
+        "Sec. 3 figure (number not verified)",
+        "Bekker pressure-sinkage of the four media beside the RFT plate law p = zeta z",
+        "terradyn.terramechanics.bekker_pressure; materials",
+        ("bekker", "rft"),
+        (_BEKKER, _AGARWAL_2019),
+    ),
+    ThesisItem(
+        "fig-4-1",
+        4,
+        "Fig. 4-1",
+        "alpha_x, alpha_z of a plate over orientation and direction of motion: RFT and MPM",
+        "study alpha-map",
+        ("rft", "mpm"),
+        (_LI_2013,),
+    ),
+    ThesisItem(
+        "ch4-plate-depth",
+        4,
+        "Sec. 4 figure (number not verified)",
+        "force on a horizontal plate pushed down versus depth, five media",
+        "study plate-depth",
+        ("rft", "mpm", "dem"),
+        (_LI_2013,),
+    ),
+    ThesisItem(
+        "tab-6-1",
+        6,
+        "Table 6.1",
+        "medium parameters: Bekker/Wong-Reece set and RFT constant, checked unit by unit",
+        "terradyn.report.bekker_audit",
+        ("bekker", "rft"),
+        (_AGARWAL_2019,),
+    ),
+    ThesisItem(
+        "tab-6-2",
+        6,
+        "Table 6.2",
+        "wheels A, B and C: the published specification and terradyn's closest documented wheels",
+        "terradyn.report.wheels_abc",
+        ("theory",),
+        (_AGARWAL_2019, _AGARWAL_2021),
+    ),
+    ThesisItem(
+        "fig-6-8",
+        6,
+        "Fig. 6-8",
+        "drawbar pull, torque and sinkage versus slip of wheel A on MS, MMS, LPS, CPS: RFT vs "
+        "Wong-Reece (and MPM)",
+        "study wheel-force-slip",
+        ("rft", "wong-reece", "mpm"),
+        (_AGARWAL_2019, _WONG_REECE),
+    ),
+    ThesisItem(
+        "ch6-wheels-bc",
+        6,
+        "Sec. 6.1 figures (numbers not verified)",
+        "force-slip of wheels B and C on the four media: RFT vs Wong-Reece (and MPM)",
+        "terradyn.report.wheels_abc",
+        ("rft", "wong-reece", "mpm"),
+        (_AGARWAL_2019,),
+    ),
+    ThesisItem(
+        "ch6-flapped",
+        6,
+        "Sec. 6.2 figure (number not verified)",
+        "normalised speed of self-propelled flapped wheels versus flap count and length",
+        "study flapped-wheels",
+        ("rft", "mpm"),
+        (_THESIS,),
+    ),
+    ThesisItem(
+        "ch7-optimisation",
+        7,
+        "Sec. 7 figure (number not verified)",
+        "flapped-wheel optimisation: objective map with the optimum inside the bounds",
+        "terradyn.studies.optimisation.flapped_optimisation",
+        ("rft",),
+        (_THESIS,),
+    ),
+    ThesisItem(
+        "ch8-high-speed",
+        8,
+        "Sec. 8 figure (number not verified)",
+        "slip, speed and sinkage of the grousered wheel versus spin rate: RFT, DRFT (and MPM)",
+        "study high-speed (terradyn study high-speed)",
+        ("rft", "drft", "mpm"),
+        (_AGARWAL_2021,),
+    ),
+    ThesisItem(
+        "ch8-onset-criterion",
+        8,
+        "Sec. 8 formula (number not verified)",
+        "the slip-onset criterion as a formula in the dimensionless groups, fitted over the "
+        "sensitivity sweeps",
+        "terradyn.studies.high_speed.fit_onset_criterion",
+        ("drft",),
+        (_AGARWAL_2021, _THESIS),
+    ),
+    ThesisItem(
+        "fig-9-1",
+        9,
+        "Fig. 9-1",
+        "Prandtl-Reissner / Sokolovskii slip-line field under a strip footing (and MPM)",
+        "terradyn.plasticity.prandtl_field, moc_n_gamma",
+        ("theory", "mpm"),
+        (_THESIS,),
+    ),
+    ThesisItem(
+        "ch9-plate-packing",
+        9,
+        "Sec. 9 figure (number not verified)",
+        "plate in consolidated and unconsolidated beds",
+        "mpm (pending)",
+        ("mpm", "dem"),
+        (_THESIS,),
+    ),
+    ThesisItem(
+        "ch9-wedges",
+        9,
+        "Sec. 9 figure (number not verified)",
+        "symmetric and asymmetric wedges against a plate at equal projected (base) depth",
+        "study wedges",
+        ("rft", "mpm"),
+        (_THESIS,),
+    ),
+    ThesisItem(
+        "ch9-superposition",
+        9,
+        "Sec. 9 figure (number not verified)",
+        "two bodies versus the sum of each alone, over their gap",
+        "study superposition",
+        ("rft", "mpm"),
+        (_THESIS,),
+    ),
+    ThesisItem(
+        "ch9-plowing",
+        9,
+        "Sec. 9 figure (number not verified)",
+        "plowing with a vertical plate versus packing fraction",
+        "mpm / dem (pending)",
+        ("mpm", "dem"),
+        (_GRAVISH_2010,),
+    ),
+    ThesisItem(
+        "ch9-lift-drag",
+        9,
+        "Sec. 9 figure (number not verified)",
+        "lift and drag of cylinder, square and half-cylinders versus depth",
+        "study lift-drag",
+        ("rft", "mpm"),
+        (_DING_2011,),
+    ),
+    ThesisItem(
+        "fig-9-9",
+        9,
+        "Fig. 9-9",
+        "state variables (pressure, packing) around a dragged cylinder",
+        "mpm (pending)",
+        ("mpm",),
+        (_DING_2011,),
+    ),
+)
+
+RowFunction = Callable[[bool], ItemOutput]
+#: (item key, model) -> "module:function" of the row (strings keep work units picklable)
+_ROWS: dict[tuple[str, str], str] = {}
+
+
+def item(key: str) -> ThesisItem:
+    """The registry item ``key``."""
+    for it in ITEMS:
+        if it.key == key:
+            return it
+    raise InputError("item", key, f"one of {[i.key for i in ITEMS]}")
+
+
+def register_row(item_key: str, model: str, function: str) -> None:
+    """Plug in a row: ``function`` is ``"package.module:name"`` of ``name(quick: bool) -> ItemOutput``.
+
+    Rows share their item's figure slot in the report; a row for a model the item does not list is
+    an error (add the model to the item first)."""
+    it = item(item_key)
+    if model not in it.models:
+        raise InputError("model", model, f"one of the models of {item_key}: {list(it.models)}")
+    if ":" not in function:
+        raise InputError("function", function, "'package.module:function'")
+    _ROWS[(item_key, model)] = function
+
+
+def dem_available() -> bool:
+    """Whether ``terradyn.dem`` imports (its rows are listed only then)."""
+    try:
+        return importlib.util.find_spec("terradyn.dem") is not None and bool(
+            importlib.import_module("terradyn.dem")
+        )
+    except ImportError:
+        return False
+
+
+def rows_of(it: ThesisItem) -> list[tuple[str, str | None]]:
+    """(model, row function or None when pending) for every model of ``it`` shown in the report."""
+    _load_rows()
+    out: list[tuple[str, str | None]] = []
+    for model in it.models:
+        if model == "dem" and not dem_available():
+            continue
+        out.append((model, _ROWS.get((it.key, model))))
+    return out
+
+
+def row_for(key: str, model: str) -> RowFunction:
+    """The row function registered for (item, model)."""
+    _load_rows()
+    spec = _ROWS.get((key, model))
+    if spec is None:
+        raise InputError("row", f"{key}/{model}", "a registered row")
+    module, name = spec.split(":")
+    fn: RowFunction = getattr(importlib.import_module(module), name)
+    return fn
+
+
+_LOADED = [False]
+
+
+def _load_rows() -> None:
+    """Register the rows that ship with terradyn (once), then those of optional modules."""
+    if _LOADED[0]:
+        return
+    _LOADED[0] = True
+    base = "terradyn.report.rows"
+    for key, model, name in (
+        ("ch3-pressure-sinkage", "bekker", "pressure_sinkage"),
+        ("fig-4-1", "rft", "alpha_map"),
+        ("ch4-plate-depth", "rft", "plate_depth"),
+        ("tab-6-1", "bekker", "material_audit"),
+        ("tab-6-2", "theory", "wheels_table"),
+        ("fig-6-8", "rft", "wheel_a_force_slip"),
+        ("ch6-wheels-bc", "rft", "wheels_bc_force_slip"),
+        ("ch6-flapped", "rft", "flapped"),
+        ("ch7-optimisation", "rft", "optimisation"),
+        ("ch8-high-speed", "drft", "high_speed"),
+        ("ch8-onset-criterion", "drft", "onset_criterion"),
+        ("fig-9-1", "theory", "slip_lines"),
+        ("ch9-wedges", "rft", "wedges"),
+        ("ch9-superposition", "rft", "superposition"),
+        ("ch9-lift-drag", "rft", "lift_drag"),
+    ):
+        _ROWS.setdefault((key, model), f"{base}:{name}")
+    # rows that one computation covers for two models (RFT and Wong-Reece share one sweep, RFT and
+    # DRFT one high-speed sweep) are registered under the first model; the others point to it
+    for key, model, first in (
+        ("ch3-pressure-sinkage", "rft", "bekker"),
+        ("tab-6-1", "rft", "bekker"),
+        ("fig-6-8", "wong-reece", "rft"),
+        ("ch6-wheels-bc", "wong-reece", "rft"),
+        ("ch8-high-speed", "rft", "drft"),
+    ):
+        _ROWS.setdefault((key, model), "=" + first)
+    # optional modules register their rows on import (e.g. terradyn.mpm.report_rows)
+    for module in ("terradyn.mpm.report_rows", "terradyn.dem.report_rows"):
+        try:
+            if importlib.util.find_spec(module) is not None:
+                importlib.import_module(module)
+        except ImportError:
+            continue

@@ -1,0 +1,46 @@
+"""``terradyn reproduce``: bad input is one line (exit 1); a quick chapter builds; an interrupt exits 130."""
+
+import pytest
+
+
+@pytest.mark.parametrize(
+    ("args", "flag"),
+    [
+        (("--chapter", "5"), "--chapter"),
+        (("--chapter", "x"), "--chapter"),
+        (("--items", "nope"), "--items"),
+        (("--workers", "0"), "--workers"),
+    ],
+)
+def test_bad_input_is_one_line(run_cli, tmp_path, args, flag):
+    code, _, err = run_cli("reproduce", "--out", str(tmp_path / "r"), *args)
+    assert code == 1
+    assert err.count("\n") == 1 and flag in err and "Traceback" not in err
+    assert not (tmp_path / "r" / "report.html").exists()
+
+
+def test_quick_chapter_and_resume(run_cli, tmp_path):
+    out = tmp_path / "r"
+    args = ("reproduce", "--chapter", "9", "--quick", "--scheduler", "serial", "--out", str(out))
+    code, stdout, err = run_cli(*args)
+    assert code == 0, err
+    assert (out / "report.html").exists() and (out / "report.md").exists()
+    assert "Fig. 9-1" in (out / "report.html").read_text(encoding="utf-8")
+    assert "0 reused" in stdout
+    code, stdout, _ = run_cli(*args)
+    assert code == 0 and "0 rows run" in stdout
+
+
+def test_interrupt_exits_130_and_says_how_to_resume(run_cli, tmp_path, monkeypatch):
+    import terradyn.report.build as build
+
+    def interrupted(key, model):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(build, "row_for", interrupted)
+    code, _, err = run_cli(
+        "reproduce", "--chapter", "9", "--quick", "--scheduler", "serial", "--out", str(tmp_path / "r")
+    )
+    assert code == 130
+    assert "interrupted" in err and "rerun" in err
+    assert not (tmp_path / "r" / "report.html").exists()

@@ -1,0 +1,84 @@
+"""The report machinery: the quick report builds, names every registry item, and resumes."""
+
+import json
+from html import escape
+
+import pytest
+
+from terradyn.report import ITEMS, reproduce
+from terradyn.report.build import cache_path, rows_to_run, units_for
+from terradyn.report.registry import Finding, register_row, rows_of
+
+
+@pytest.fixture(scope="module")
+def quick_report(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("report")
+    return folder, reproduce(folder, quick=True)
+
+
+def test_quick_report_names_every_item_and_embeds_figures(quick_report):
+    folder, run = quick_report
+    assert run.failures == []
+    html = (folder / "report.html").read_text(encoding="utf-8")
+    md = (folder / "report.md").read_text(encoding="utf-8")
+    for it in ITEMS:
+        assert it.label in html and escape(it.caption) in html and f"id='{it.key}'" in html
+        assert it.label in md and it.caption in md
+    figures = sum(len(r["figures"]) for r in run.results.values())
+    assert figures >= 10
+    assert html.count("data:image/png;base64,") == figures  # self-contained
+    assert len(list((folder / "figures").glob("*.png"))) == figures
+    # every computed row says what agrees and what does not, with numbers
+    for (key, model), r in run.results.items():
+        assert r["findings"], f"{key}/{model} has no findings"
+        assert any(ch.isdigit() for f in r["findings"] for ch in f["text"])
+    # models without a row are listed as pending, never silently dropped
+    assert "pending" in html and "MPM" in html
+
+
+def test_rerun_reuses_the_cache(quick_report):
+    folder, first = quick_report
+    assert rows_to_run(folder, quick=True) == []
+    again = reproduce(folder, quick=True)
+    assert again.ran == 0 and again.reused == first.ran + first.reused
+    assert rows_to_run(folder, quick=False)  # full runs are cached separately
+
+
+def test_interrupted_run_keeps_finished_rows(tmp_path, monkeypatch):
+    import terradyn.report.build as build
+
+    units = units_for([i for i in ITEMS if i.chapter == 9])
+    assert len(units) >= 3
+    real = build.row_for
+    stop_at = units[2]
+
+    def interrupting(key, model):
+        if (key, model) == stop_at:
+            raise KeyboardInterrupt
+        return real(key, model)
+
+    monkeypatch.setattr(build, "row_for", interrupting)
+    with pytest.raises(KeyboardInterrupt):
+        reproduce(tmp_path, chapters=[9], quick=True)
+    assert not (tmp_path / "report.html").exists()
+    for key, model in units[:2]:
+        data = json.loads(cache_path(tmp_path, key, model, True).read_text())
+        assert data["status"] == "ran"
+    monkeypatch.setattr(build, "row_for", real)
+    assert rows_to_run(tmp_path, chapters=[9], quick=True) == units[2:]
+    run = reproduce(tmp_path, chapters=[9], quick=True)
+    assert run.reused == 2 and run.ran == len(units) - 2
+    assert (tmp_path / "report.html").exists()
+
+
+def test_registry_rows_and_plugins():
+    keys = [it.key for it in ITEMS]
+    assert len(keys) == len(set(keys))
+    assert {it.chapter for it in ITEMS} == {3, 4, 6, 7, 8, 9}
+    for it in ITEMS:
+        shown = [m for m, _ in rows_of(it)]
+        assert set(shown) <= set(it.models)
+    with pytest.raises(Exception, match="models of"):
+        register_row("fig-6-8", "dem", "x.y:z")
+    with pytest.raises(Exception, match="verdict"):
+        Finding("x", "maybe")
