@@ -151,7 +151,7 @@ def lift_drag(
     the square, as measured (MS, 25.4 mm bodies, 0.1 m deep: lift / drag = +0.83 and +0.81). It
     does not give the downward lift the experiments report for the half-cylinder: RFT lifts it up in
     both orientations (+1.38 flat side up, +1.23 flat side down). The cause is the law, not the
-    geometry: with the generic Li et al. (2013) coefficients alpha_z(beta, gamma = 0) >= -0.024 zeta
+    geometry: with the generic Li et al. (2013) coefficients alpha_z(beta, gamma = 0) >= -0.025 zeta
     for every orientation, so a body dragged horizontally collects almost no downward stress from
     any element. Downward lift needs a medium whose fitted alpha_z goes negative for upward-facing
     leading surfaces, or a continuum model (MPM).
