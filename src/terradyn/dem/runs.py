@@ -1,0 +1,362 @@
+"""DEM runs: a rigid body pushed at constant velocity into a settled bed (force and torque history).
+
+The bed is prepared (:func:`terradyn.dem.bed.prepare_bed`) around the body unless one is given; the
+body starts with its lowest point half a grain above the free surface and moves along ``direction``
+(below +x) at ``speed`` until its reference point is ``depth`` below the surface, ending at x = 0.
+Each history row is the mean over one record interval of the contact force (and torque about the
+reference point) on the body, at the mean position of the interval.
+
+Checkpoints are LAMMPS restart files (atoms, contact histories, fix states) beside a JSON file of the
+run's parameters and the history so far; ``resume=True`` continues from them and gives the same
+history as the uninterrupted run (every chunk of steps starts with the same LAMMPS setup in both).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError, check_finite
+from ..geometry import Body
+from ..materials import Material
+from . import bed as _bed
+from ._lammps import is_root, new_lammps
+from .bed import BODY_TYPE, Bed, BedKind, BedSpec, Packing, check_speed, prepare_bed
+from .intruders import WALL_DIAMETER_FRACTION, body_spheres, rotated_extent
+
+__all__ = ["DEMIntrusionResult", "default_bed_spec", "run_intrusion"]
+
+HISTORY_KEYS = ("time_s", "depth_m", "x_m", "z_m", "force_x_N", "force_z_N", "torque_y_Nm")
+
+
+@dataclass(frozen=True, eq=False)
+class DEMIntrusionResult:
+    """Force and torque on a body pushed into a DEM bed (SI; forces on the body, z up).
+
+    ``history`` maps each of :data:`HISTORY_KEYS` to an array (one row per record interval);
+    ``summary`` holds ``force_x_N``, ``force_z_N``, ``torque_y_Nm`` as the reference point passes
+    ``depth`` (mean over the last grain diameter of travel) and the run's parameters; ``bed`` the
+    settled bed's figures (grain count, packing fraction, coordination, ...).
+    """
+
+    history: dict[str, np.ndarray]
+    summary: dict[str, Any]
+    bed: dict[str, Any] = field(default_factory=dict)
+
+    def to_dataframe(self) -> Any:
+        import pandas as pd
+
+        return pd.DataFrame({k: self.history[k] for k in HISTORY_KEYS})
+
+
+def default_bed_spec(
+    body: Body, *, depth: float, direction: float, angle: float, grain_diameter: float,
+    kind: BedKind | str = BedKind.SLAB, packing: Packing | str = Packing.DENSE, seed: int = 12345,
+) -> BedSpec:  # fmt: skip
+    """A bed around the body's path: the body's extent plus 6 grains (or one body size) of grains on
+    each side and below, and room above for its start."""
+    xmin, xmax, zmin, zmax = rotated_extent(body, angle)
+    s = math.sin(direction)
+    travel = (0.5 * grain_diameter + depth - zmin) / s
+    tx = travel * math.cos(direction)
+    span = max(xmax - xmin, zmax - zmin)
+    margin = max(6.0 * grain_diameter, span)
+    x_lo = min(xmin, xmin - tx) - margin
+    x_hi = max(xmax, xmax - tx) + margin
+    length = 2.0 * max(abs(x_lo), abs(x_hi))
+    bed_depth = depth - zmin + margin
+    headroom = zmax - zmin + 5.0 * grain_diameter
+    return BedSpec(length=length, depth=bed_depth, kind=BedKind.coerce(kind), packing=Packing.coerce(packing), headroom=headroom,
+                   grain_diameter=grain_diameter, seed=seed)  # fmt: skip
+
+
+def _start_gap(bed: Bed, body: Body, depth: float, direction: float, angle: float) -> float:
+    """Height [m] above the surface of the body's lowest point at the start: clear of the highest grain
+    under its path by a quarter grain (the top layer of a bed is looser than its interior)."""
+    d = bed.dem.grain_diameter
+    xmin, xmax, _zmin, _zmax = rotated_extent(body, angle)
+    x, r, t = bed.grain_arrays()
+    g = t == _bed.GRAIN_TYPE
+    travel_x = (depth + 4 * d) / math.tan(direction)
+    lo = min(xmin, xmin - travel_x) - d
+    hi = max(xmax, xmax - travel_x) + d
+    under = g & (x[:, 0] >= lo) & (x[:, 0] <= hi)
+    top = float((x[under, 2] + r[under]).max()) if under.any() else bed.surface
+    return max(0.5 * d, top - bed.surface + 0.25 * d + 0.5 * WALL_DIAMETER_FRACTION * d)
+
+
+def _check_direction(direction: float) -> float:
+    direction = check_finite("direction", direction)
+    if not 0.05 <= direction <= math.pi - 0.05:
+        raise InputError(
+            "direction", direction, "a direction in [0.05, pi - 0.05] rad (3-177 deg) below +x",
+            "the body must move into the bed",
+        )  # fmt: skip
+    return direction
+
+
+def _state(params: dict[str, Any], history: dict[str, list[float]], step: int) -> str:
+    return json.dumps({"params": params, "history": history, "step": step})
+
+
+def _write_checkpoint(lmp: Any, path: Path, params: dict[str, Any], history: dict[str, list[float]],
+                      step: int) -> None:  # fmt: skip
+    """Restart file and JSON side file, each written to a temporary name and moved into place."""
+    tmp = path.with_name(f".{path.name}.tmp")
+    lmp.command(f"write_restart {tmp}")
+    if is_root(lmp):
+        side = path.with_name(path.name + ".json")
+        side_tmp = side.with_name(f".{side.name}.tmp")
+        side_tmp.write_text(_state(params, history, step), encoding="utf-8")
+        os.replace(tmp, path)
+        os.replace(side_tmp, side)
+
+
+def _body_fixes(lmp: Any, params: dict[str, Any]) -> None:
+    """Motion, force/torque computes and averaging of the body (fresh runs and after a restart)."""
+    vx, vz = params["velocity"]
+    ox, oz = params["ref_offset"]
+    k = params["chunk"]
+    for line in (
+        f"fix td_move body move linear {vx:.17g} 0 {vz:.17g}",
+        "compute td_tqa body property/atom tqy",
+        f"variable td_xr equal xcm(body,x)+({ox:.17g})",
+        f"variable td_zr equal xcm(body,z)+({oz:.17g})",
+        "variable td_tq atom (z-v_td_zr)*fx-(x-v_td_xr)*fz+c_td_tqa",
+        "compute td_f body reduce sum fx fz v_td_tq",
+        f"fix td_avg all ave/time 1 {k} {k} c_td_f[1] c_td_f[2] c_td_f[3]",
+    ):
+        lmp.command(line)
+
+
+def run_intrusion(
+    body: Body,
+    material: Material,
+    *,
+    depth: float,
+    direction: float = math.pi / 2,
+    angle: float = 0.0,
+    speed: float = 0.02,
+    bed: Bed | None = None,
+    bed_spec: BedSpec | None = None,
+    kind: BedKind | str = BedKind.SLAB,
+    packing: Packing | str = Packing.DENSE,
+    grain_diameter: float | None = None,
+    record_spacing: float | None = None,
+    checkpoint_path: str | Path | None = None,
+    checkpoint_interval: float = 60.0,
+    resume: bool = False,
+    progress: Callable[[float, float], None] | None = None,
+    stop_after_rows: int | None = None,
+) -> DEMIntrusionResult:
+    """Push ``body`` at ``speed`` [m/s] along ``direction`` [rad below +x], rotated by ``angle`` [rad],
+    until its reference point is ``depth`` [m] below the surface of a DEM bed of ``material``.
+
+    ``bed`` is a prepared bed (it is consumed: the body is added to it); else ``bed_spec`` or
+    :func:`default_bed_spec` is poured and settled. ``record_spacing`` is the travel [m] per history row
+    (default a tenth of a grain). ``stop_after_rows`` stops early (after writing a checkpoint), as an
+    interruption would; tests use it.
+    """
+    speed = check_speed(speed)
+    depth = check_finite("depth", depth)
+    if not depth > 0:
+        raise InputError("depth", depth, "a depth > 0 [m] below the surface")
+    direction = _check_direction(direction)
+    angle = check_finite("angle", angle)
+    ckpt = Path(checkpoint_path) if checkpoint_path is not None else None
+    if resume:
+        if ckpt is None or not ckpt.is_file():
+            raise InputError("checkpoint_path", checkpoint_path, "an existing checkpoint with resume")
+        return _resume(ckpt, checkpoint_interval, progress, stop_after_rows)
+    dem = material.require_dem()
+    d = grain_diameter if grain_diameter is not None else dem.grain_diameter
+    if bed is None:
+        spec = bed_spec or default_bed_spec(
+            body, depth=depth, direction=direction, angle=angle, grain_diameter=d, kind=kind, packing=packing
+        )
+
+        def settle_progress(t: float, f: float) -> None:
+            if progress is not None:
+                progress(0.0, 0.3 * f)
+
+        bed = prepare_bed(material, spec, progress=settle_progress)
+    d = bed.dem.grain_diameter
+    _xmin, _xmax, zmin, zmax = rotated_extent(body, angle)
+    ux, uz = math.cos(direction), -math.sin(direction)
+    gap = _start_gap(bed, body, depth, direction, angle)
+    travel = (gap + depth - zmin) / math.sin(direction)
+    start = (-travel * ux, -depth - travel * uz, angle)
+    if bed.box[5] - bed.surface < zmax - zmin + gap + 0.5 * d:
+        bed.close()
+        raise InputError(
+            "bed headroom", bed.box[5] - bed.surface, f"at least {zmax - zmin + gap + 0.5 * d:.4g} m"
+        )
+    periodic = bed.spec.kind is BedKind.SLAB
+    y_range = (bed.box[2], bed.box[3]) if periodic else (
+        0.5 * (bed.box[2] + bed.box[3]) - 0.5 * body.width, 0.5 * (bed.box[2] + bed.box[3]) + 0.5 * body.width
+    )  # fmt: skip
+    if not periodic and body.width > bed.thickness - 4 * d:
+        bed.close()
+        raise InputError(
+            "width", body.width, f"below {bed.thickness - 4 * d:.4g} m (the 3d bed's width less 4 grains)"
+        )
+    pts, d_w = body_spheres(body, d, start, bed.surface, y_range, periodic=periodic)
+    if pts[:, 0].min() < bed.box[0] + d or pts[:, 0].max() > bed.box[1] - d:
+        bed.close()
+        raise InputError("bed length", bed.box[1] - bed.box[0], "a bed longer than the body's path")
+    width = bed.thickness if periodic else body.width
+    lmp = bed.lmp
+    dt = bed.dt
+    spacing = record_spacing if record_spacing is not None else 0.1 * d
+    if not spacing > 0 or not math.isfinite(spacing):
+        raise InputError("record_spacing", spacing, "a travel > 0 [m] per history row")
+    chunk = max(10, round(spacing / (speed * dt)))
+    total_steps = math.ceil(travel / (speed * dt))
+    rows = max(1, math.ceil(total_steps / chunk))
+    n0 = int(lmp.get_natoms())
+    _add_atoms(lmp, pts, n0)
+    for line in (
+        "group body clear",
+        f"group body type {BODY_TYPE}",
+        f"set type {BODY_TYPE} diameter {d_w:.17g}",
+        f"set type {BODY_TYPE} density {bed.dem.grain_density:.17g}",
+        "reset_timestep 0",
+    ):
+        lmp.command(line)
+    centroid = pts[:, [0, 2]].mean(axis=0)
+    ref0 = np.array([start[0], bed.surface + start[1]])
+    params: dict[str, Any] = {
+        "velocity": [speed * ux, speed * uz],
+        "ref_offset": (ref0 - centroid).tolist(),
+        "start": list(start),
+        "surface": bed.surface,
+        "chunk": chunk,
+        "rows": rows,
+        "dt": dt,
+        "speed": speed,
+        "depth": depth,
+        "direction": direction,
+        "angle": angle,
+        "width": width,
+        "grain_diameter": d,
+        "body_spheres": len(pts),
+        "grain_count": n0,
+        "bed": bed.summary(),
+        "bed_kind": bed.spec.kind.value,
+        "material": material.name,
+        "dem": _dem_dict(bed),
+        "box": list(bed.box),
+    }
+    _body_fixes(lmp, params)
+    history: dict[str, list[float]] = {k: [] for k in HISTORY_KEYS}
+    try:
+        return _loop(lmp, params, history, 0, ckpt, checkpoint_interval, progress, stop_after_rows)
+    finally:
+        bed.lmp = None
+        lmp.close()
+
+
+def _resume(ckpt: Path, interval: float, progress: Callable[[float, float], None] | None,
+            stop_after_rows: int | None) -> DEMIntrusionResult:  # fmt: skip
+    side = ckpt.with_name(ckpt.name + ".json")
+    try:
+        state = json.loads(side.read_text(encoding="utf-8"))
+        params, history, step = state["params"], state["history"], int(state["step"])
+    except (OSError, ValueError, KeyError) as exc:
+        raise InputError("checkpoint", str(ckpt), "a terradyn DEM checkpoint with its .json file",
+                         " ".join(str(exc).split())[:100]) from None  # fmt: skip
+    lmp = new_lammps()
+    try:
+        lmp.command("atom_modify map array")
+        lmp.command(f"read_restart {ckpt}")
+        from ..materials import DEMParameters
+
+        dem = DEMParameters(**{k: v for k, v in params["dem"].items()})
+        _bed.setup_interactions(lmp, tuple(params["box"]), dem, BedKind(params["bed_kind"]), pair=True,
+                                friction=dem.friction, rolling=dem.rolling_friction)  # fmt: skip
+        _body_fixes(lmp, params)
+        return _loop(lmp, params, history, step, ckpt, interval, progress, stop_after_rows)
+    finally:
+        lmp.close()
+
+
+def _loop(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], step: int, ckpt: Path | None,
+          interval: float, progress: Callable[[float, float], None] | None,
+          stop_after_rows: int | None) -> DEMIntrusionResult:  # fmt: skip
+    chunk, rows, dt = params["chunk"], params["rows"], params["dt"]
+    vx, vz = params["velocity"]
+    x0, z0, _theta = params["start"]
+    last_save = time.perf_counter()
+    done_here = 0
+    row = len(history["time_s"])
+    try:
+        while row < rows:
+            lmp.command(f"run {chunk}")
+            step += chunk
+            t_mid = (step - 0.5 * chunk) * dt
+            fx = float(lmp.extract_fix("td_avg", 0, 1, 0))
+            fz = float(lmp.extract_fix("td_avg", 0, 1, 1))
+            ty = float(lmp.extract_fix("td_avg", 0, 1, 2))
+            x, z = x0 + vx * t_mid, z0 + vz * t_mid
+            for key, value in zip(HISTORY_KEYS, (t_mid, -z, x, z, fx, fz, ty), strict=True):
+                history[key].append(value)
+            row += 1
+            done_here += 1
+            if progress is not None:
+                progress(-z, 0.3 + 0.7 * row / rows)
+            if ckpt is not None and row < rows and time.perf_counter() - last_save > interval:
+                _write_checkpoint(lmp, ckpt, params, history, step)
+                last_save = time.perf_counter()
+            if stop_after_rows is not None and done_here >= stop_after_rows and row < rows:
+                if ckpt is not None:
+                    _write_checkpoint(lmp, ckpt, params, history, step)
+                raise KeyboardInterrupt
+    except KeyboardInterrupt as exc:
+        if ckpt is not None and stop_after_rows is None:
+            _write_checkpoint(lmp, ckpt, params, history, step)
+            exc.checkpoint_path = ckpt  # type: ignore[attr-defined]
+        exc.time_s = step * dt  # type: ignore[attr-defined]
+        raise
+    return _result(params, history)
+
+
+def _result(params: dict[str, Any], history: dict[str, list[float]]) -> DEMIntrusionResult:
+    h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
+    d = params["grain_diameter"]
+    last = h["depth_m"] >= params["depth"] - d - 1e-12
+    if not last.any():
+        last = np.zeros(len(h["depth_m"]), dtype=bool)
+        last[-1] = True
+    summary = {
+        "force_x_N": float(h["force_x_N"][last].mean()),
+        "force_z_N": float(h["force_z_N"][last].mean()),
+        "torque_y_Nm": float(h["torque_y_Nm"][last].mean()),
+        "depth_m": params["depth"],
+        "speed_m_s": params["speed"],
+        "width_m": params["width"],
+        "grain_count": params["grain_count"],
+        "body_spheres": params["body_spheres"],
+    }
+    return DEMIntrusionResult(h, summary, dict(params["bed"]))
+
+
+def _dem_dict(bed: Bed) -> dict[str, Any]:
+    return {k: v for k, v in asdict(bed.dem).items()}
+
+
+def _add_atoms(lmp: Any, pts: np.ndarray, n0: int) -> None:
+    """Body spheres as new atoms of type BODY_TYPE (the ``create_atoms single`` command keeps every
+    fix's per-atom arrays in step)."""
+    lmp.commands_list(
+        [f"create_atoms {BODY_TYPE} single {x:.17g} {y:.17g} {z:.17g} units box" for x, y, z in pts]
+    )
+    if int(lmp.get_natoms()) != n0 + len(pts):
+        raise InputError("body", len(pts), "body spheres inside the bed's box")
