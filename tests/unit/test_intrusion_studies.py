@@ -80,3 +80,13 @@ def test_wedge_equal_projected_depth_ratio_near_one():
     left, right = c["lateral_ratio"][c["tip_offset_m"] < 0], c["lateral_ratio"][c["tip_offset_m"] > 0]
     np.testing.assert_allclose(left, -right, rtol=1e-9, atol=1e-12)
     assert np.all(right > 0)
+
+
+def test_generic_law_has_almost_no_downward_stress_for_horizontal_motion():
+    """Why RFT cannot give the downward lift Ding et al. (2011) measured on a half-cylinder:
+    alpha_z(beta, gamma = 0) >= -0.025 zeta for every orientation of the generic law."""
+    from terradyn.rft.li2013 import li2013_alpha_material
+
+    beta = np.linspace(-0.5 * np.pi, 0.5 * np.pi, 2001)
+    _, az = li2013_alpha_material(beta, np.zeros_like(beta), MS)
+    assert -0.025 * MS.zeta <= az.min() < -0.02 * MS.zeta

@@ -82,3 +82,30 @@ def test_registry_rows_and_plugins():
         register_row("fig-6-8", "dem", "x.y:z")
     with pytest.raises(Exception, match="verdict"):
         Finding("x", "maybe")
+
+
+def test_numbers_of_the_reworked_studies(quick_report):
+    """Wedges at equal projected depth, the optimum inside its bounds, the fitted onset formula, and
+    what RFT gives for lift (the report's rows hold the numbers)."""
+    import math
+
+    _, run = quick_report
+    m = {key: r["metrics"] for (key, _), r in run.results.items()}
+    assert 0.9 <= m["ch9-wedges"]["symmetric_ratio_min"] <= m["ch9-wedges"]["symmetric_ratio_max"] <= 1.1
+    opt = m["ch7-optimisation"]
+    assert opt["interior"] is True
+    assert opt["best_cost_of_transport"] <= opt["grid_min_cost_of_transport"] * 1.02
+    fit = m["ch8-onset-criterion"]
+    assert 0.8 < fit["r_squared"] <= 1.0
+    rows = run.results[("ch8-onset-criterion", "drft")]["tables"]["onset_cases"]
+    c = fit["coefficients"]
+    for row in rows:  # the printed formula is the one that made the predictions
+        pred = c["C"] * math.prod(row[k] ** a for k, a in c.items() if k != "C")
+        assert pred == pytest.approx(row["predicted"], rel=1e-9)
+    lift = m["ch9-lift-drag"]
+    assert lift["cylinder_lift_over_drag"] > 0 and lift["square_lift_over_drag"] > 0
+    # RFT's generic law lifts the half-cylinder up in both orientations (experiments: down)
+    assert (
+        lift["half-cylinder-flat-up_lift_over_drag"] > 0
+        and lift["half-cylinder-flat-down_lift_over_drag"] > 0
+    )

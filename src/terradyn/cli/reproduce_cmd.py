@@ -14,7 +14,10 @@ def reproduce(
     out: str = typer.Option(..., "--out", help="Report folder (report.html, report.md, figures/, cache/)."),
     items: str | None = typer.Option(None, "--items", help="Only these item keys, comma separated."),
     scheduler: str = typer.Option(
-        "processes", "--scheduler", help="serial, processes, local (Dask) or a Dask address tcp://host:port."
+        "auto",
+        "--scheduler",
+        help="auto (serial with --quick, else local processes), serial, processes, local (Dask) or a Dask "
+        "address tcp://host:port.",
     ),
     workers: int | None = typer.Option(None, "--workers", help="Worker processes (default: one per core)."),
 ) -> None:
@@ -43,6 +46,8 @@ def reproduce(
     only = [k.strip() for k in items.split(",") if k.strip()] if items else None
     if items is not None and not only:
         raise InputError("--items", items, "one or more item keys")
+    if scheduler == "auto":
+        scheduler = "serial" if quick else "processes"
     total = len(rows_to_run(folder, chapters=chapters, quick=quick, only=only))
     with progress(total, f"reproduce ({total} rows)") as advance:
         try:

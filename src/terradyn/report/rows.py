@@ -361,10 +361,20 @@ def onset_criterion(quick: bool) -> ItemOutput:
         settings={"cases": len(fit.table), "reduced": quick},
         metrics={
             "formula": fit.formula,
+            "coefficients": fit.coefficients,
+            "alternative": fit.alternative,
             "r_squared": fit.r_squared,
             "max_relative_error": fit.max_relative_error,
         },
         tables={"onset_cases": fit.table.records()},
+    )
+    alt = fit.alternative
+    out.findings.append(
+        Finding(
+            f"one-constant alternative {alt['formula']}: R^2 = {alt['r_squared']:.3f}, largest "
+            f"relative error {alt['max_relative_error']:.1%}",
+            "info",
+        )
     )
     out.findings.append(
         Finding(
