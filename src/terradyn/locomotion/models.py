@@ -11,7 +11,7 @@ from ..terrain import TerrainModel
 
 __all__ = ["MODEL_NAMES", "ModelSpec"]
 
-MODEL_NAMES = ("rft", "wong-reece", "drft")
+MODEL_NAMES = ("rft", "wong-reece", "drft", "rft-ss")
 
 
 @dataclass(frozen=True)
@@ -20,7 +20,8 @@ class ModelSpec:
 
     Attributes
     ----------
-    name : "rft", "wong-reece" or "drft"
+    name : "rft", "wong-reece", "drft" or "rft-ss" (slip-sinkage RFT with its default parameters,
+    :mod:`terradyn.rft.slip_sinkage`)
     element_size : RFT/DRFT discretisation [m] (None: body default)
     c1, c2 : Wong-Reece theta_m coefficients [-]; exit_angle : Wong-Reece exit angle [rad]
     """
@@ -33,7 +34,7 @@ class ModelSpec:
 
     def __post_init__(self) -> None:
         key = self.name.strip().lower()
-        aliases = {"wongreece": "wong-reece", "wr": "wong-reece"}
+        aliases = {"wongreece": "wong-reece", "wr": "wong-reece", "slip-sinkage": "rft-ss"}
         key = aliases.get(key, key)
         if key not in MODEL_NAMES:
             raise InputError("model", self.name, f"one of {list(MODEL_NAMES)}")
@@ -50,6 +51,10 @@ class ModelSpec:
             from ..terramechanics import WongReeceModel
 
             return WongReeceModel(material, c1=self.c1, c2=self.c2, exit_angle=self.exit_angle)
+        if self.name == "rft-ss":
+            from ..rft.slip_sinkage import SlipSinkageRFTModel
+
+            return SlipSinkageRFTModel(material, element_size=self.element_size)
         from ..rft.drft import DRFTModel
 
         return DRFTModel(material, element_size=self.element_size)
