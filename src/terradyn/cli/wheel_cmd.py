@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
 from typing import Any
@@ -86,6 +87,35 @@ def model_factory(
     return ModelSpec(name, element_size=element_size, c1=c1, c2=c2, exit_angle=exit_angle)
 
 
+class Wheel3DOptions:
+    """Flags of the 3D wheel path (--model rft3d)."""
+
+    mesh = typer.Option(None, "--mesh", help="Wheel mesh (STL/OBJ/PLY) for --model rft3d.")
+    mesh_units = typer.Option("m", "--mesh-units", help="Length unit of the mesh file: m, cm or mm.")
+    axle = typer.Option("y", "--axle", help="Mesh axis the wheel turns about: x, y or z.")
+    center = typer.Option(
+        None, "--center", help="Axle centre X,Y,Z [mesh units] (default: fitted to the mesh)."
+    )
+    xi = typer.Option(None, "--xi", help="3D-RFT media scale xi [N/m^3] (default: from --material).")
+    slip_angle = typer.Option(0.0, "--slip-angle", help="Slip angle [deg], -90 to 90, for --model rft3d.")
+    cull = typer.Option(
+        False, "--cull/--no-cull", help="Drop mesh facets the soil cannot reach (hub, inner rim)."
+    )
+
+
+class KinematicsOptions:
+    """How the wheel moves: a slip under a named definition, or the rim and carriage speeds."""
+
+    slip_definition = typer.Option(
+        "classic", "--slip-definition",
+        help="classic: s = 1 - V/(omega r); bounded: s = (omega r - V)/max(omega r, V), -1 = locked.",
+    )  # fmt: skip
+    rim_speed = typer.Option(None, "--rim-speed", help="Rim speed omega r [m/s] (with --carriage-speed).")
+    carriage_speed = typer.Option(
+        None, "--carriage-speed", help="Axle speed over the ground [m/s] (with --rim-speed)."
+    )
+
+
 #: the size flags of every wheel shape, declared once for all wheel commands
 WHEEL_SIZE_FLAGS = _declared(
     ("radius", "thickness", "grouser_count", "grouser_height", "grouser_thickness", "hub_radius",
@@ -150,8 +180,16 @@ def _plot_steady(body: Body, mat: Material, res: Any, path: Path, element_size: 
 @wheel_flags
 def steady(
     material: str = MATERIAL,
-    load: float = LOAD,
-    slip: float = typer.Option(..., "--slip", help="Slip s = 1 - V/(omega r), in [-1, 1]."),
+    load: float | None = typer.Option(None, "--load", help="Vertical load W [N] (or --sinkage)."),
+    sinkage: float | None = typer.Option(
+        None, "--sinkage", help="Prescribed sinkage [m] instead of --load: the forces at that depth."
+    ),
+    slip: float | None = typer.Option(
+        None, "--slip", help="Slip [-] in [-1, 1] (see --slip-definition), or give the speeds."
+    ),
+    slip_definition: str = KinematicsOptions.slip_definition,
+    rim_speed: float | None = KinematicsOptions.rim_speed,
+    carriage_speed: float | None = KinematicsOptions.carriage_speed,
     omega: float = OMEGA,
     model: str = typer.Option("rft", "--model", help="Terrain model: rft, drft, wong-reece or rft3d."),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
@@ -162,43 +200,141 @@ def steady(
     c1: float = WongReeceOptions.c1,
     c2: float = WongReeceOptions.c2,
     exit_angle: float = WongReeceOptions.exit_angle,
-    mesh: str | None = typer.Option(None, "--mesh", help="Wheel mesh (STL/OBJ/PLY) for --model rft3d."),
-    slip_angle: float = typer.Option(0.0, "--slip-angle", help="Slip angle [deg] for --model rft3d."),
+    mesh: str | None = Wheel3DOptions.mesh,
+    mesh_units: str = Wheel3DOptions.mesh_units,
+    axle: str = Wheel3DOptions.axle,
+    center: str | None = Wheel3DOptions.center,
+    xi: float | None = Wheel3DOptions.xi,
+    slip_angle: float = Wheel3DOptions.slip_angle,
+    cull: bool = Wheel3DOptions.cull,
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = typer.Option(
         None, "--plot", help="Wheel with RFT traction arrows (.png/.pdf/.svg/.jpg)."
     ),
 ) -> None:
-    """Sinkage, drawbar pull, drive torque and power of a wheel at a load and slip."""
-    from ..locomotion import wheel_steady
-
+    """Sinkage, drawbar pull, drive torque and power of a wheel at a load (or sinkage) and slip."""
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     flags = _shape_flags(shape, sizes)
+    _load_or_sinkage(load, sinkage)
+    kin = _kinematics(slip, slip_definition, rim_speed, carriage_speed)
     if model.strip().lower() == "rft3d":
         if plot_path is not None:
             raise InputError("--plot", plot, "a plane model (--model rft)")
-        mesh_path = input_file("--mesh", mesh)
-        angle = check_finite("--slip-angle", slip_angle)
-        if not abs(angle) < 90.0:
-            raise InputError("--slip-angle", slip_angle, "an angle in (-90, 90) [deg]")
+        angle = _slip_angle_deg(slip_angle, kin)
+        spec = _Wheel3DSpec(mesh, mesh_units, axle, center, cull)
+        wheel, phase_count = _wheel_3d(shape, flags, width, spec, phases)
+        medium = _medium_3d(material, xi)
         with spinner("3D steady solve"):
-            rec = _steady_3d(shape, flags, width, mesh_path, material, load, slip, angle, omega, phases)
+            rec = _steady_3d(wheel, medium, load, sinkage, kin, angle, omega, phase_count, cull)
         emit(rec, fmt, out_path)
         return
-    if mesh is not None or slip_angle != 0.0:
-        raise InputError(
-            "--mesh" if mesh is not None else "--slip-angle", mesh or slip_angle, "only with --model rft3d"
-        )
+    for flag, value, default in (
+        ("--mesh", mesh, None), ("--slip-angle", slip_angle, 0.0), ("--xi", xi, None),
+        ("--center", center, None), ("--mesh-units", mesh_units, "m"), ("--axle", axle, "y"),
+        ("--cull", cull, False),
+    ):  # fmt: skip
+        if value != default:
+            raise InputError(flag, value, "only with --model rft3d")
+    from ..locomotion import wheel_steady
+    from ..locomotion.prescribed import wheel_at_sinkage
+
     body = wheel_body(shape, width, flags)
     mat = materials.get(material)
     factory = model_factory(model, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
     if plot_path is not None and factory.name != "rft":
         raise InputError("--plot", plot, "only with --model rft (traction arrows of RFT elements)")
-    res = wheel_steady(body, factory(mat), load, slip, omega=omega, phase_count=phases)
+    s, spin = _plane_slip(kin, omega, body)
+    if sinkage is not None:
+        res = wheel_at_sinkage(body, factory(mat), sinkage, s, omega=spin, phase_count=phases,
+                               slip_definition=kin.definition)  # fmt: skip
+    else:
+        assert load is not None
+        res = wheel_steady(body, factory(mat), load, s, omega=spin, phase_count=phases,
+                           slip_definition=kin.definition)  # fmt: skip
     if plot_path is not None:
         _plot_steady(body, mat, res, plot_path, element_size)
-    emit(_steady_record(res), fmt, out_path)
+    rec = _steady_record(res)
+    rec["slip_definition"] = kin.definition
+    emit(rec, fmt, out_path)
+
+
+class _Kinematics:
+    """The wheel's motion as the user gave it (slip, or rim and carriage speeds)."""
+
+    def __init__(
+        self, slip: float | None, definition: str, rim: float | None, carriage: float | None
+    ) -> None:
+        self.slip, self.definition, self.rim, self.carriage = slip, definition, rim, carriage
+
+
+def _kinematics(
+    slip: float | None, definition: str, rim: float | None, carriage: float | None
+) -> _Kinematics:
+    from ..kinematics import SlipDefinition
+
+    choices = [d.value for d in SlipDefinition]
+    name = definition.strip().lower()
+    if name not in choices:
+        raise InputError("--slip-definition", definition, f"one of {choices}")
+    if slip is not None and (rim is not None or carriage is not None):
+        raise InputError("--slip", slip, "either --slip or --rim-speed with --carriage-speed, not both")
+    if slip is None:
+        if rim is None and carriage is None:
+            raise InputError("--slip", None, "a slip [-] (or --rim-speed and --carriage-speed)")
+        if rim is None or carriage is None:
+            flag = "--rim-speed" if rim is None else "--carriage-speed"
+            raise InputError(flag, None, "a speed [m/s] (--rim-speed and --carriage-speed go together)")
+        if not (math.isfinite(rim) and rim >= 0.0):
+            raise InputError("--rim-speed", rim, "a rim speed omega r >= 0 [m/s]")
+        if not (math.isfinite(carriage) and carriage > 0.0):
+            raise InputError("--carriage-speed", carriage, "a speed > 0 [m/s]")
+        if name == "classic" and rim == 0.0:
+            raise InputError(
+                "--rim-speed", rim, "a rim speed > 0 [m/s] with --slip-definition classic",
+                "a locked wheel needs --slip-definition bounded",
+            )  # fmt: skip
+    else:
+        hint = "s = 1 - V/(omega r)" if name == "classic" else "s = (omega r - V)/max(omega r, V)"
+        if not (math.isfinite(slip) and -1.0 <= slip <= 1.0):
+            raise InputError("--slip", slip, "a number in [-1, 1]", hint)
+    return _Kinematics(slip, name, rim, carriage)
+
+
+def _load_or_sinkage(load: float | None, sinkage: float | None) -> None:
+    if (load is None) == (sinkage is None):
+        flag, value = ("--sinkage", sinkage) if load is not None else ("--load", load)
+        raise InputError(flag, value, "exactly one of --load [N] and --sinkage [m]")
+    if load is not None and not (math.isfinite(load) and load > 0.0):
+        raise InputError("--load", load, "a load > 0 [N]")
+    if sinkage is not None and not (math.isfinite(sinkage) and sinkage >= 0.0):
+        raise InputError("--sinkage", sinkage, "a depth >= 0 [m]")
+
+
+def _plane_slip(kin: _Kinematics, omega: float, body: Body) -> tuple[float, float]:
+    """(slip in the chosen definition, the omega the plane solver takes) for a plane wheel."""
+    from ..kinematics import slip_from_speeds
+    from ..locomotion import wheel_nominal_radius
+
+    if kin.slip is not None:
+        return kin.slip, omega
+    assert kin.rim is not None and kin.carriage is not None
+    radius = wheel_nominal_radius(body)
+    s = slip_from_speeds(kin.rim, kin.carriage, definition=kin.definition)
+    scale = kin.rim if kin.definition == "classic" else max(kin.rim, kin.carriage)
+    return s, scale / radius
+
+
+def _slip_angle_deg(slip_angle: float, kin: _Kinematics) -> float:
+    angle = check_finite("--slip-angle", slip_angle)
+    if not abs(angle) <= 90.0:
+        raise InputError("--slip-angle", slip_angle, "an angle in [-90, 90] [deg]")
+    if abs(angle) == 90.0 and kin.slip is not None:
+        raise InputError(
+            "--slip-angle", slip_angle, "an angle in (-90, 90) [deg] with --slip",
+            "at 90 deg the slip does not fix the motion: give --rim-speed and --carriage-speed",
+        )  # fmt: skip
+    return angle
 
 
 @app.command("self-propelled")
@@ -406,65 +542,129 @@ def _require(module: str, flag: str, value: Any, what: str) -> None:
         raise InputError(flag, value, what)
 
 
-def _steady_3d(
-    shape: WheelShape,
-    flags: dict[str, Any],
-    width: float,
-    mesh: Path | None,
-    material: str,
-    load: float,
-    slip: float,
-    slip_angle_deg: float,
-    omega: float,
-    phases: int,
-) -> dict[str, Any]:
-    """``wheel steady --model rft3d``: 3D RFT on a mesh or a primitive wheel, with a slip angle."""
-    from ..geometry3d import load_mesh, wheel_cylinder, wheel_grousered
-    from ..locomotion.steady3d import steady3d_record, wheel_steady_3d
+@dataclass(frozen=True)
+class _Wheel3DSpec:
+    mesh: str | None
+    units: str
+    axle: str
+    center: str | None
+    cull: bool
 
+
+def _wheel_3d(
+    shape: WheelShape, flags: dict[str, Any], width: float, spec: _Wheel3DSpec, phases: int
+) -> tuple[Any, int]:
+    """The 3D wheel (body frame) of --mesh (placed by --mesh-units/--axle/--center) or a primitive."""
+    from ..geometry3d import wheel_cylinder, wheel_grousered
+
+    if spec.mesh is None:
+        for flag, value, default in (
+            ("--center", spec.center, None), ("--mesh-units", spec.units, "m"), ("--axle", spec.axle, "y"),
+        ):  # fmt: skip
+            if value != default:
+                raise InputError(flag, value, "only with --mesh")
     radius = flags.get("radius")
-    phase_count = 1
-    if mesh is not None:
-        wheel = load_mesh(mesh)
-        phase_count = phases
-    elif shape is WheelShape.circular:
+    if spec.mesh is not None:
+        from ..geometry3d.mesh import load_mesh
+        from ..geometry3d.wheel import Axle, MeshUnits, wheel_from_mesh
+
+        path = input_file("--mesh", spec.mesh)
+        units = spec.units.strip().lower()
+        if units not in [u.value for u in MeshUnits]:
+            raise InputError("--mesh-units", spec.units, "one of m, cm, mm")
+        axle = spec.axle.strip().lower()
+        if axle not in [a.value for a in Axle]:
+            raise InputError("--axle", spec.axle, "one of x, y, z")
+        centre = None if spec.center is None else parse_float_list("--center", spec.center)
+        if centre is not None and len(centre) != 3:
+            raise InputError("--center", spec.center, "three numbers X,Y,Z [mesh units]")
+        assert path is not None
+        wheel, fit = wheel_from_mesh(load_mesh(path), units=units, axle=axle, center=centre)
+        typer.echo(f"terradyn: {fit.summary(units)}", err=True)
+        return wheel, phases
+    if shape is WheelShape.circular:
         if radius is None:
             raise InputError("--radius", None, "a radius [m] (or --mesh)")
-        wheel = wheel_cylinder(radius, width, circumferential_resolution=360, axial_resolution=2)
-    elif shape is WheelShape.grousered:
+        return wheel_cylinder(radius, width, circumferential_resolution=360, axial_resolution=2), 1
+    if shape is WheelShape.grousered:
         if radius is None:
             raise InputError("--radius", None, "a radius [m] (or --mesh)")
         for flag in ("grouser_count", "grouser_height", "grouser_thickness"):
             if flags.get(flag) is None:
                 raise InputError(f"--{flag.replace('_', '-')}", None, "a value (required for grousered)")
         wheel = wheel_grousered(
-            radius,
-            width,
-            grouser_count=flags["grouser_count"],
-            grouser_height=flags["grouser_height"],
-            grouser_thickness=flags["grouser_thickness"],
-            circumferential_resolution=360,
+            radius, width, grouser_count=flags["grouser_count"], grouser_height=flags["grouser_height"],
+            grouser_thickness=flags["grouser_thickness"], circumferential_resolution=360,
             axial_resolution=2,
-        )
-        phase_count = phases
-    else:
-        raise InputError("--shape", shape.value, "circular or grousered for rft3d (or --mesh FILE)")
-    res = wheel_steady_3d(
-        wheel,
-        materials.get(material),
-        load,
-        slip,
-        slip_angle=math.radians(slip_angle_deg),
-        omega=omega,
-        phase_count=phase_count,
+        )  # fmt: skip
+        return wheel, phases
+    raise InputError("--shape", shape.value, "circular or grousered for rft3d (or --mesh FILE)")
+
+
+def _medium_3d(material: str, xi: float | None) -> Any:
+    """The 3D-RFT medium: --xi, else the material (its density and friction, or its plane RFT scale)."""
+    from ..locomotion.steady3d import rft3d_medium
+
+    if xi is not None:
+        if not (math.isfinite(xi) and xi > 0.0):
+            raise InputError("--xi", xi, "a media scale > 0 [N/m^3]")
+        return float(xi)
+    mat = materials.get(material)
+    medium, note = rft3d_medium(mat)
+    if not note:
+        raise InputError(
+            "--material", material, "a medium with [density] and [friction] (the 3D-RFT scaling) or an "
+            "[rft] scale (a TOML from 'terradyn calibrate rft')", "or give the scale itself with --xi",
+        )  # fmt: skip
+    if not isinstance(medium, Material):
+        typer.echo(f"terradyn: {note}", err=True)
+    return medium
+
+
+def _steady_3d(
+    wheel: Any,
+    medium: Any,
+    load: float | None,
+    sinkage: float | None,
+    kin: _Kinematics,
+    slip_angle_deg: float,
+    omega: float,
+    phase_count: int,
+    cull: bool,
+) -> dict[str, Any]:
+    """``wheel steady --model rft3d``: 3D RFT at a load or a sinkage, with a slip angle."""
+    from ..locomotion.steady3d import (
+        steady3d_record,
+        wheel_at_sinkage_3d,
+        wheel_contact_mesh,
+        wheel_steady_3d,
     )
+
+    angle = math.radians(slip_angle_deg)
+    facets = wheel.facet_count
+    if cull:
+        wheel = wheel_contact_mesh(wheel, slip_angle=angle)
+    options: dict[str, Any] = {
+        "slip_angle": angle, "omega": omega, "slip_definition": kin.definition,
+        "rim_speed": kin.rim, "carriage_speed": kin.carriage, "phase_count": phase_count,
+    }  # fmt: skip
+    if sinkage is not None:
+        res = wheel_at_sinkage_3d(wheel, medium, sinkage, kin.slip, **options)
+    else:
+        assert load is not None
+        res = wheel_steady_3d(wheel, medium, load, kin.slip, **options)
     rec: dict[str, Any] = dict(steady3d_record(res))
     rec.update(
         {
-            "load_N": float(load),
-            "omega_rad_s": float(omega),
+            "load_N": float(res.load_N),
+            "omega_rad_s": float(res.omega_rad_s),
             "forward_velocity_m_s": float(res.longitudinal_velocity_m_s),
+            "lateral_velocity_m_s": float(res.lateral_velocity_m_s),
+            "slip_definition": kin.definition,
+            "facet_count": res.facet_count,
             "model": "rft3d",
         }
     )
+    if cull:
+        rec["culled_facet_count"] = facets - res.facet_count
     return rec

@@ -47,16 +47,24 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, SolverError, check_finite, check_positive, check_range
 from ..geometry3d import TriangleMesh
+from ..kinematics import SlipDefinition, as_slip_definition, slip_from_speeds, speeds_from_slip
 from ..materials import Material
 from ..results import TableResult
 
 __all__ = [
+    "WheelKinematics3D",
     "WheelSteady3DResult",
+    "rft3d_medium",
     "steady3d_record",
     "sweep_3d",
+    "wheel_at_sinkage_3d",
+    "wheel_contact_directions",
+    "wheel_contact_mesh",
+    "wheel_kinematics_3d",
     "wheel_nominal_radius_3d",
     "wheel_period_3d",
     "wheel_steady_3d",
+    "xi_from_zeta",
 ]
 
 # Axle heights of the coarse scan that brackets the load (as _steady_kernels.SCAN_POINTS).
@@ -212,6 +220,85 @@ def _check_mesh(mesh: TriangleMesh) -> TriangleMesh:
     return mesh
 
 
+def xi_from_zeta(zeta: float) -> float:
+    """3D-RFT media scale xi [N/m^3] matching a plane-RFT scale zeta [N/m^3] (alpha_z(0, pi/2)).
+
+    Both laws are matched where the calibration experiment measures them: a horizontal plate pushed
+    straight down, whose stress per depth is zeta in the plane law and xi alpha_z in 3D RFT
+    (alpha_z = 0.87574 with the default fit), so xi = zeta / alpha_z.
+    """
+    from ..rft.rft3d import agarwal2023_alpha
+
+    z = check_positive("zeta", zeta)
+    down = np.array([[0.0, 0.0, -1.0]])
+    return z / float(agarwal2023_alpha(down, down)[0, 2])
+
+
+def rft3d_medium(material: Material) -> tuple[Material | float, str]:
+    """The 3D-RFT medium of a material and how its scale was found.
+
+    The media scaling of Agarwal et al. (2023) from ``critical_density`` and ``internal_friction_angle``
+    when the material has both; else :func:`xi_from_zeta` of its plane RFT scale (e.g. a TOML written by
+    ``terradyn calibrate rft``). Returns (the Material or xi [N/m^3], a one-line note).
+    """
+    if not isinstance(material, Material):
+        raise InputError("material", type(material).__name__, "a terradyn Material")
+    if material.critical_density is not None and material.internal_friction_angle is not None:
+        return (
+            material,
+            f"xi = {_xi(material):.6g} N/m^3 from the density and friction angle of {material.name}",
+        )
+    if material.rft is not None:
+        zeta = material.rft.zeta
+        xi = xi_from_zeta(zeta)
+        return xi, (
+            f"xi = {xi:.6g} N/m^3 from the plane RFT scale zeta = {zeta:.6g} N/m^3 of {material.name} "
+            "(matched on a horizontal plate pushed down)"
+        )
+    return material, ""
+
+
+def wheel_contact_directions(slip_angle: float = 0.0, *, count: int = 24) -> NDArray[np.float64]:
+    """Body-frame directions (D, 3) from which the medium can meet a wheel over one turn.
+
+    Over a turn the world's downward (penetration) direction and the in-plane part of every facet's
+    motion sweep the wheel plane: ``count`` directions (cos phi, 0, sin phi). With a slip angle the
+    facets also move sideways, the lateral tilt of their velocity ranging from that of the axle to
+    90 deg at the instantaneous centre: the same circle tilted by 15, 30, ..., 75 deg towards the
+    side the wheel moves to, and that side's axle direction itself.
+    """
+    angle = _slip_angle(slip_angle)
+    phi = 2.0 * math.pi * np.arange(count) / count
+    tilts = [0.0] if angle == 0.0 else [math.radians(t) for t in (0.0, 15.0, 30.0, 45.0, 60.0, 75.0)]
+    side = math.copysign(1.0, angle)
+    rows = [
+        np.column_stack(
+            (math.cos(t) * np.cos(phi), np.full(count, side * math.sin(t)), math.cos(t) * np.sin(phi))
+        )
+        for t in tilts
+    ]
+    if angle != 0.0:
+        rows.append(np.array([[0.0, side, 0.0]]))
+    return np.vstack(rows)
+
+
+def wheel_contact_mesh(mesh: TriangleMesh, *, slip_angle: float = 0.0, count: int = 24) -> TriangleMesh:
+    """The facets of a wheel the medium can reach: those visible from outside along
+    :func:`wheel_contact_directions` (:func:`terradyn.geometry3d.visibility.visible_facets`).
+
+    Drops enclosed faces (a hub inside a closed tyre, inner rim surfaces); keeps every facet of a closed
+    convex wheel that faces one of the directions, so there the RFT answer is unchanged. Raises
+    InputError if nothing is left.
+    """
+    from ..geometry3d.visibility import visible_facets
+
+    _check_mesh(mesh)
+    keep = visible_facets(mesh, wheel_contact_directions(slip_angle, count=count))
+    if not np.any(keep):
+        raise InputError("mesh", "no facet visible from outside", "a wheel surface the medium can reach")
+    return TriangleMesh(mesh.vertices, mesh.faces[keep])
+
+
 def _rotations_y(thetas: NDArray[np.float64]) -> NDArray[np.float64]:
     """Rotations (P, 3, 3) by the wheel angles ``thetas`` [rad] about +y (the spin sense)."""
     c, s = np.cos(thetas), np.sin(thetas)
@@ -232,6 +319,7 @@ class _Wheel3D:
     surface: float
     leading_edge: bool
     surface_friction: float | None
+    period: float = 0.0
 
     def wrenches(self, heights: ArrayLike) -> NDArray[np.float64]:
         """Wrenches (H, P, 6) [N, N m] at axle heights (H,) [m] over the P phases, about the axle."""
@@ -316,36 +404,116 @@ def _xi(material: Material) -> float:
     return agarwal2023_xi_material(material)
 
 
-def _inputs(
-    load: float, slip: float, slip_angle: float, omega: float, phase_count: int, period: float | None
-) -> tuple[float, float, float, float, int, float]:
-    load = check_positive("load", load)
-    slip = check_range("slip", slip, -1.0, 1.0, hint="s = 1 - V_x/(omega r)")
+def _slip_angle(slip_angle: float) -> float:
     slip_angle = check_finite("slip_angle", slip_angle)
-    if not abs(slip_angle) < 0.5 * math.pi:
+    if not abs(slip_angle) <= 0.5 * math.pi + 1e-12:
         raise InputError(
-            "slip_angle", slip_angle, "an angle in (-pi/2, pi/2) [rad], i.e. |slip angle| < 90 deg",
-            "the velocity must have a forward component along the heading",
-        )  # fmt: skip
-    omega = check_finite("omega", omega)
-    if not omega > 0.0:
-        raise InputError("omega", omega, "a spin rate > 0 [rad/s]", "slip is undefined when omega <= 0")
+            "slip_angle", slip_angle, "an angle in [-pi/2, pi/2] [rad], i.e. |slip angle| <= 90 deg"
+        )
+    return max(-0.5 * math.pi, min(0.5 * math.pi, slip_angle))
+
+
+def _phases(phase_count: int, period: float | None) -> tuple[int, float]:
     if isinstance(phase_count, bool) or not isinstance(phase_count, int | np.integer):
         raise InputError("phase_count", phase_count, "an integer in [1, 4096]")
     if not 1 <= phase_count <= 4096:
         raise InputError("phase_count", phase_count, "an integer in [1, 4096]")
     span = math.nan if period is None else check_range("period", period, 1e-9, 2.0 * math.pi, unit="rad")
-    return load, slip, slip_angle, omega, int(phase_count), span
+    return int(phase_count), span
+
+
+# cos(slip angle) used at |slip angle| = 90 deg: the one-sided limit from below (wheel_kinematics_3d).
+_SIDEWAYS = 1e-9
+
+
+@dataclass(frozen=True)
+class WheelKinematics3D:
+    """Axle velocity and spin of a wheel in the wheel frame, and its slip.
+
+    longitudinal_velocity, lateral_velocity : V_x, V_y [m/s]; omega : spin [rad/s] (>= 0);
+    slip : longitudinal slip [-] in ``slip_definition`` ("classic" or "bounded").
+    """
+
+    longitudinal_velocity: float
+    lateral_velocity: float
+    omega: float
+    slip: float
+    slip_definition: str
+
+
+def wheel_kinematics_3d(
+    radius: float,
+    slip: float | None = None,
+    *,
+    slip_angle: float = 0.0,
+    omega: float = 1.0,
+    slip_definition: SlipDefinition | str = SlipDefinition.CLASSIC,
+    rim_speed: float | None = None,
+    carriage_speed: float | None = None,
+) -> WheelKinematics3D:
+    """The wheel's motion from a slip and a slip angle [rad], or from the rim and carriage speeds.
+
+    With ``slip``: the speeds of :func:`terradyn.kinematics.speeds_from_slip` at scale omega r,
+    V_y = V_x tan(slip_angle); needs |slip_angle| < pi/2 (at 90 deg V_x = 0 and the slip no longer
+    fixes the motion). With ``rim_speed`` U = omega r [m/s] (>= 0) and ``carriage_speed`` V [m/s]
+    (> 0, the axle's speed over the ground): V_x = V cos(slip_angle), V_y = V sin(slip_angle),
+    omega = U / r, any slip angle in [-pi/2, pi/2] and a locked wheel (U = 0) included.
+
+    At |slip_angle| = pi/2 the rim moves tangentially to itself (n . v = 0 on every rim facet), the
+    point where the leading-edge rule of RFT switches: the wheel is taken as the limit |slip angle| ->
+    90 deg from below, V_x = 1e-9 V (so the slip there is 1 when spinning, -1 when locked).
+    """
+    radius = check_positive("nominal_radius", radius)
+    angle = _slip_angle(slip_angle)
+    definition = as_slip_definition(slip_definition)
+    given = (rim_speed is not None, carriage_speed is not None)
+    if slip is not None and any(given):
+        raise InputError("slip", slip, "either a slip or rim_speed and carriage_speed, not both")
+    if slip is None:
+        if not all(given):
+            missing = "rim_speed" if rim_speed is None else "carriage_speed"
+            raise InputError(missing, None, "a speed [m/s] (give slip, or rim_speed and carriage_speed)")
+        assert rim_speed is not None and carriage_speed is not None
+        u = check_finite("rim_speed", rim_speed)
+        if u < 0.0:
+            raise InputError("rim_speed", rim_speed, "a rim speed omega r >= 0 [m/s]")
+        v = check_finite("carriage_speed", carriage_speed)
+        if not v > 0.0:
+            raise InputError("carriage_speed", carriage_speed, "a speed > 0 [m/s]")
+        vx, vy = v * max(math.cos(angle), _SIDEWAYS), v * math.sin(angle)
+        if definition is SlipDefinition.CLASSIC and not u > 0.0:
+            raise InputError(
+                "rim_speed", rim_speed, "a rim speed > 0 [m/s] for the classic slip",
+                "use slip_definition='bounded' for a locked wheel",
+            )  # fmt: skip
+        s = slip_from_speeds(u, vx, definition=definition)
+        return WheelKinematics3D(vx, vy, u / radius, s, definition.value)
+    classic = definition is SlipDefinition.CLASSIC
+    hint = "s = 1 - V_x/(omega r)" if classic else "s = (omega r - V_x)/max(omega r, V_x)"
+    s = check_range("slip", slip, -1.0, 1.0, hint=hint)
+    omega = check_finite("omega", omega)
+    if not omega > 0.0:
+        raise InputError("omega", omega, "a spin rate > 0 [rad/s]", "slip is undefined when omega <= 0")
+    if not abs(angle) < 0.5 * math.pi:
+        raise InputError(
+            "slip_angle", slip_angle, "an angle in (-pi/2, pi/2) [rad] with a slip",
+            "at 90 deg the longitudinal slip does not fix the motion: give rim_speed and carriage_speed",
+        )  # fmt: skip
+    u, vx = speeds_from_slip(s, definition=definition, speed=omega * radius)
+    return WheelKinematics3D(vx, vx * math.tan(angle), u / radius, s, definition.value)
 
 
 def wheel_steady_3d(
     mesh: TriangleMesh,
     medium: Material | float,
     load: float,
-    slip: float,
+    slip: float | None = None,
     *,
     slip_angle: float = 0.0,
     omega: float = 1.0,
+    slip_definition: SlipDefinition | str = SlipDefinition.CLASSIC,
+    rim_speed: float | None = None,
+    carriage_speed: float | None = None,
     nominal_radius: float | None = None,
     phase_count: int = 1,
     period: float | None = None,
@@ -365,13 +533,21 @@ def wheel_steady_3d(
         both), or the 3D-RFT media scale xi [N/m^3].
     load : float
         Vertical load on the axle [N] (> 0).
-    slip : float
-        Longitudinal slip s = 1 - V_x / (omega r) in [-1, 1]; > 0 driving, < 0 skidding.
+    slip : float, optional
+        Longitudinal slip in [-1, 1]; > 0 driving, < 0 skidding; classic s = 1 - V_x / (omega r) or,
+        with ``slip_definition="bounded"``, s = (omega r - V_x) / max(omega r, V_x) (-1: locked wheel).
+        Or give ``rim_speed`` and ``carriage_speed`` instead (:func:`wheel_kinematics_3d`).
     slip_angle : float
         Angle [rad] from the heading to the axle velocity, + counter-clockwise seen from above
-        (ISO 8855; velocity towards the wheel's left); |slip_angle| < pi/2. V_y = V_x tan(slip_angle).
+        (ISO 8855; velocity towards the wheel's left); |slip_angle| <= pi/2 (= pi/2 only with the
+        speeds). With a slip, V_y = V_x tan(slip_angle).
     omega : float
-        Spin rate [rad/s] (> 0). Quasi-static RFT does not depend on it.
+        Spin rate [rad/s] (> 0) with a slip (for a bounded s < 0: V_x = omega r, spin (1 + s) omega).
+        Quasi-static RFT does not depend on it.
+    slip_definition : SlipDefinition or str
+        "classic" (default) or "bounded"; also the definition of the result's ``slip``.
+    rim_speed, carriage_speed : float, optional
+        omega r [m/s] (>= 0) and the axle's speed over the ground [m/s] (> 0), instead of ``slip``.
     nominal_radius : float, optional
         r [m] of the slip definition; default :func:`wheel_nominal_radius_3d`.
     phase_count : int
@@ -399,39 +575,76 @@ def wheel_steady_3d(
         maximum it carries), or the vertical force is not monotonic in sinkage.
     """
     _check_mesh(mesh)
-    load, slip, slip_angle, omega, phase_count, span = _inputs(
-        load, slip, slip_angle, omega, phase_count, period
-    )
+    load = check_positive("load", load)
+    wheel, lowest, kin, radius = _setup(
+        mesh, medium, slip, slip_angle=slip_angle, omega=omega, slip_definition=slip_definition,
+        rim_speed=rim_speed, carriage_speed=carriage_speed, nominal_radius=nominal_radius,
+        phase_count=phase_count, period=period, surface_level=surface_level,
+        leading_edge=leading_edge, surface_friction=surface_friction,
+    )  # fmt: skip
+    what = f"load {load:g} N at slip {kin.slip:g}, slip angle {math.degrees(slip_angle):g} deg"
+    state = _solve_state(wheel, lowest, load, what)
+    return _result(wheel, kin, radius, load, float(slip_angle), state)
+
+
+def _setup(
+    mesh: TriangleMesh,
+    medium: Material | float,
+    slip: float | None,
+    *,
+    slip_angle: float,
+    omega: float,
+    slip_definition: SlipDefinition | str,
+    rim_speed: float | None,
+    carriage_speed: float | None,
+    nominal_radius: float | None,
+    phase_count: int,
+    period: float | None,
+    surface_level: float,
+    leading_edge: bool,
+    surface_friction: float | None,
+) -> tuple[_Wheel3D, NDArray[np.float64], WheelKinematics3D, float]:
+    """The wheel at its twist, the lowest body z of each phase, the kinematics and the radius."""
+    phase_count, span = _phases(phase_count, period)
     radius = (
         wheel_nominal_radius_3d(mesh)
         if nominal_radius is None
         else check_positive("nominal_radius", nominal_radius)
     )
+    kin = wheel_kinematics_3d(
+        radius, slip, slip_angle=slip_angle, omega=omega, slip_definition=slip_definition,
+        rim_speed=rim_speed, carriage_speed=carriage_speed,
+    )  # fmt: skip
     surface = check_finite("surface_level", surface_level)
     if phase_count == 1:
         span = 0.0
     elif math.isnan(span):
         span = wheel_period_3d(mesh)
-    vx = (1.0 - slip) * omega * radius
-    vy = vx * math.tan(slip_angle)
     thetas = np.arange(phase_count) * span / phase_count
     rotations = _rotations_y(thetas)
     wheel = _Wheel3D(
-        mesh, medium, np.array([vx, vy, 0.0]), np.array([0.0, omega, 0.0]), rotations, surface,
-        bool(leading_edge), surface_friction,
+        mesh, medium, np.array([kin.longitudinal_velocity, kin.lateral_velocity, 0.0]),
+        np.array([0.0, kin.omega, 0.0]), rotations, surface, bool(leading_edge), surface_friction,
+        span,
     )  # fmt: skip
     v = mesh.vertices
     lowest = np.min(
         -np.sin(thetas)[:, None] * v[None, :, 0] + np.cos(thetas)[:, None] * v[None, :, 2], axis=1
     )
-    what = f"load {load:g} N at slip {slip:g}, slip angle {math.degrees(slip_angle):g} deg"
-    state = _solve_state(wheel, lowest, load, what)
+    return wheel, lowest, kin, radius
+
+
+def _result(
+    wheel: _Wheel3D, kin: WheelKinematics3D, radius: float, load: float, slip_angle: float, state: _State
+) -> WheelSteady3DResult:
     z, (fx, fy, fz, mx, drive, mz), (dp_lo, dp_hi, fy_lo, fy_hi, drive_lo, drive_hi, fz_lo, fz_hi) = state[:3]
     sink, sink_lo, sink_hi = state[3]
     x0, x1, y0, y1, entry, exit_ = state[4]
+    omega, vx, vy, surface = kin.omega, kin.longitudinal_velocity, kin.lateral_velocity, wheel.surface
     power = drive * omega
+    phase_count, span, mesh = wheel.rotations.shape[0], wheel.period, wheel.mesh
     return WheelSteady3DResult(
-        model="rft3d", slip=slip, slip_angle_rad=slip_angle, load_N=load, omega_rad_s=omega,
+        model="rft3d", slip=kin.slip, slip_angle_rad=slip_angle, load_N=load, omega_rad_s=omega,
         nominal_radius_m=radius, longitudinal_velocity_m_s=vx, lateral_velocity_m_s=vy,
         sinkage_m=sink, axle_height_m=z - surface, drawbar_pull_N=fx, side_force_N=fy,
         vertical_force_N=fz, drive_torque_Nm=drive, power_W=power,
@@ -444,7 +657,65 @@ def wheel_steady_3d(
         vertical_force_min_N=fz_lo, vertical_force_max_N=fz_hi,
         sinkage_min_m=sink_lo, sinkage_max_m=sink_hi, phase_count=phase_count,
         period_rad=span, facet_count=mesh.facet_count,
+        extra={"slip_definition": kin.slip_definition},
     )  # fmt: skip
+
+
+def wheel_at_sinkage_3d(
+    mesh: TriangleMesh,
+    medium: Material | float,
+    sinkage: float,
+    slip: float | None = None,
+    *,
+    slip_angle: float = 0.0,
+    omega: float = 1.0,
+    slip_definition: SlipDefinition | str = SlipDefinition.CLASSIC,
+    rim_speed: float | None = None,
+    carriage_speed: float | None = None,
+    nominal_radius: float | None = None,
+    phase_count: int = 1,
+    period: float | None = None,
+    surface_level: float = 0.0,
+    leading_edge: bool = True,
+    surface_friction: float | None = None,
+) -> WheelSteady3DResult:
+    """Forces and moments of a 3D wheel held at a prescribed sinkage (no load balance).
+
+    ``sinkage`` [m] (>= 0) is the period-mean depth of the lowest point, as the ``sinkage_m`` a load
+    solve reports; the axle height that gives it is found exactly (it is piecewise linear in the
+    height). The result's ``load_N`` and ``vertical_force_N`` are the vertical force the medium
+    carries there. Other arguments as :func:`wheel_steady_3d`; solving there at that load returns the
+    same state.
+    """
+    _check_mesh(mesh)
+    depth = check_finite("sinkage", sinkage)
+    if depth < 0.0:
+        raise InputError("sinkage", sinkage, "a depth >= 0 [m] of the lowest point below the surface")
+    wheel, lowest, kin, radius = _setup(
+        mesh, medium, slip, slip_angle=slip_angle, omega=omega, slip_definition=slip_definition,
+        rim_speed=rim_speed, carriage_speed=carriage_speed, nominal_radius=nominal_radius,
+        phase_count=phase_count, period=period, surface_level=surface_level,
+        leading_edge=leading_edge, surface_friction=surface_friction,
+    )  # fmt: skip
+    from .prescribed import axle_height_for_sinkage
+
+    z = axle_height_for_sinkage(lowest, depth, wheel.surface)
+    state = _state_at(wheel, lowest, z)
+    return _result(wheel, kin, radius, state[1][2], float(slip_angle), state)
+
+
+def _state_at(wheel: _Wheel3D, lowest: NDArray[np.float64], z: float) -> _State:
+    """The state tuple of :func:`_solve_compiled` at axle height ``z`` [m]."""
+    surface = wheel.surface
+    w = wheel.wrenches([z])[0]
+    fx, fy, fz, mx, my, mz = (w[:, k] for k in range(6))
+    drive = -my
+    sink = np.maximum(surface - (z + lowest), 0.0)  # a phase clear of the surface sinks 0
+    means = (float(fx.mean()), float(fy.mean()), float(fz.mean()), float(mx.mean()), float(drive.mean()),
+             float(mz.mean()))  # fmt: skip
+    extremes = tuple(float(f(a)) for a in (fx, fy, drive, fz) for f in (np.min, np.max))
+    patch = _contact_patch(wheel, z, wheel.rotations[0])
+    return z, means, extremes, (float(sink.mean()), float(sink.min()), float(sink.max())), patch  # type: ignore[return-value]
 
 
 _State = tuple[
@@ -494,15 +765,7 @@ def _solve_reference(wheel: _Wheel3D, lowest: NDArray[np.float64], load: float, 
     """:func:`_solve_compiled` from the batched wrench function and SciPy's brentq (the reference)."""
     surface = wheel.surface
     z = _solve_height(wheel, load, surface, surface - float(lowest.min()), what)
-    w = wheel.wrenches([z])[0]
-    fx, fy, fz, mx, my, mz = (w[:, k] for k in range(6))
-    drive = -my
-    sink = np.maximum(surface - (z + lowest), 0.0)  # a phase clear of the surface sinks 0
-    means = (float(fx.mean()), float(fy.mean()), float(fz.mean()), float(mx.mean()), float(drive.mean()),
-             float(mz.mean()))  # fmt: skip
-    extremes = tuple(float(f(a)) for a in (fx, fy, drive, fz) for f in (np.min, np.max))
-    patch = _contact_patch(wheel, z, wheel.rotations[0])
-    return z, means, extremes, (float(sink.mean()), float(sink.min()), float(sink.max())), patch  # type: ignore[return-value]
+    return _state_at(wheel, lowest, z)
 
 
 # The solver wheel_steady_3d uses (tests swap in _solve_reference).
