@@ -19,14 +19,14 @@ import os
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
-import tempfile  # noqa: E402
-import time  # noqa: E402
-from pathlib import Path  # noqa: E402
+import tempfile
+import time
+from pathlib import Path
 
-import numpy as np  # noqa: E402
+import numpy as np
 
-from terradyn.geometry3d import save_mesh, wheel_cylinder  # noqa: E402
-from terradyn.replay import ReplayModel, replay, runs_from_records  # noqa: E402
+from terradyn.geometry3d import save_mesh, wheel_cylinder
+from terradyn.replay import ReplayModel, replay, runs_from_records
 
 SLIPS = np.round(np.linspace(-1.0, 0.9, 43), 10)
 RADIUS, WIDTH = 0.0625, 0.06
