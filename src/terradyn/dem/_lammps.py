@@ -96,3 +96,14 @@ def require_styles(lmp: Any) -> None:
 def is_root(lmp: Any) -> bool:
     """True on MPI rank 0 (the rank that writes files and prints)."""
     return int(lmp.extract_setting("world_rank")) == 0
+
+
+def mpi_rank() -> int:
+    """This process's rank under ``mpirun`` (0 without MPI), from the launcher's environment."""
+    import os
+
+    for key in ("PMI_RANK", "OMPI_COMM_WORLD_RANK", "PMIX_RANK", "MV2_COMM_WORLD_RANK"):
+        value = os.environ.get(key)
+        if value is not None and value.isdigit():
+            return int(value)
+    return 0

@@ -6,7 +6,8 @@ the whole thickness and results compare with plane models times that width) or *
 of finite width in the middle). Grains start on a jittered lattice in a tall region (no overlaps), fall
 under gravity and settle; the packing is set by the grain friction during settling (``dense``: a
 tenth of the grain friction and no rolling resistance, then the material's values; ``loose``: the
-material's values throughout). Every LAMMPS command is issued through its Python module; nothing is written by hand.
+material's values throughout). Every LAMMPS command is issued through its Python module; nothing
+is written by hand.
 
 Contact law (LAMMPS ``pair_style granular``): Hertz normal force from the grains' Young's modulus and
 Poisson ratio (``hertz/material``) with viscous damping set by the coefficient of restitution

