@@ -34,16 +34,16 @@ RADIUS, WIDTH = 0.0625, 0.06
 
 def _table_3d(mesh_file: str) -> list[dict[str, object]]:
     return [
-        {"run_id": f"W{w:g}-a{a:g}-s{s:+.4f}", "medium": "MS", "mesh_file": mesh_file, "load_N": w, "slip": float(s),
-         "slip_angle_deg": a, "drawbar_pull_N": 0.0}
+        {"run_id": f"W{w:g}-a{a:g}-s{s:+.4f}", "medium": "MS", "mesh_file": mesh_file, "load_N": w,
+         "slip": float(s), "slip_angle_deg": a, "drawbar_pull_N": 0.0}
         for w in (13.0, 20.0, 30.0) for a in (0.0, 45.0, 90.0) for s in SLIPS
     ]  # fmt: skip
 
 
 def _table_2d() -> list[dict[str, object]]:
     return [
-        {"run_id": f"W{w:g}-s{s:+.4f}", "medium": "MS", "radius_m": RADIUS, "width_m": WIDTH, "load_N": float(w),
-         "slip": float(s), "drawbar_pull_N": 0.0}
+        {"run_id": f"W{w:g}-s{s:+.4f}", "medium": "MS", "radius_m": RADIUS, "width_m": WIDTH,
+         "load_N": float(w), "slip": float(s), "drawbar_pull_N": 0.0}
         for w in np.linspace(12.0, 28.0, 9) for s in SLIPS
     ]  # fmt: skip
 
@@ -72,7 +72,8 @@ def main() -> None:
             t_serial, _ = _time(subset, model, "serial", None)
             t_par, solved = _time(records, model, "processes", 2)
             print(
-                f"{model:7s} serial: {len(subset)} runs in {t_serial:.2f} s = {len(subset) / t_serial:.1f} runs/s | "
+                f"{model:7s} serial: {len(subset)} runs in {t_serial:.2f} s = "
+                f"{len(subset) / t_serial:.1f} runs/s | "
                 f"2 processes: {len(records)} runs ({solved} solved) in {t_par:.2f} s = "
                 f"{len(records) / t_par:.1f} runs/s"
             )
