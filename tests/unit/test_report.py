@@ -95,6 +95,7 @@ def test_numbers_of_the_reworked_studies(quick_report):
     opt = m["ch7-optimisation"]
     assert opt["interior"] is True
     assert opt["best_cost_of_transport"] <= opt["grid_min_cost_of_transport"] * 1.02
+    assert opt["bounds_min_cost_of_transport"] > opt["best_cost_of_transport"]
     fit = m["ch8-onset-criterion"]
     assert 0.8 < fit["r_squared"] <= 1.0
     rows = run.results[("ch8-onset-criterion", "drft")]["tables"]["onset_cases"]
