@@ -108,3 +108,21 @@ def test_prescribed_sinkage_2d_and_3d(run_cli):
         assert held["drawbar_pull_N"] == pytest.approx(loaded["drawbar_pull_N"], rel=1e-4)
     code, _, err = run_cli("wheel", "steady", *PRIMITIVE, "--slip", "0.3")
     assert code == 1 and "--load" in err
+
+
+def test_sweep_rft3d_matches_steady_points(run_cli):
+    code, out, err = run_cli(
+        "wheel", "sweep", "--model", "rft,rft3d", *PRIMITIVE, "--load", "20", "--slip", "-0.5,0.5",
+        "--slip-angle", "0,30", "--slip-definition", "bounded", "--format", "json",
+    )  # fmt: skip
+    assert code == 0, err
+    rows = json.loads(out)
+    spatial = [r for r in rows if r["model"] == "rft3d"]
+    assert len(spatial) == 4 and len(rows) == 6 and all(r["solved"] for r in rows)
+    point = next(r for r in spatial if r["slip"] == -0.5 and r["slip_angle_deg"] == 30.0)
+    ref, _ = _json(run_cli, *PRIMITIVE, "--load", "20", "--slip", "-0.5", "--slip-angle", "30",
+                   "--slip-definition", "bounded")  # fmt: skip
+    for key in ("sinkage_m", "drawbar_pull_N", "side_force_N"):
+        assert point[key] == pytest.approx(ref[key], rel=1e-12), key
+    code, _, err = run_cli("wheel", "sweep", "--model", "rft", "--slip-angle", "10")
+    assert code == 1 and "--slip-angle" in err

@@ -379,7 +379,9 @@ def sweep(
     material: str = typer.Option("MS", "--material", help="Media (names or TOML files), comma separated."),
     load: str = typer.Option("80,130,150,190", "--load", help="Loads [N]: a comma list or start:stop:count."),
     slip: str = typer.Option("-0.7:0.7:15", "--slip", help="Slips [-]: a comma list or start:stop:count."),
-    model: str = typer.Option("rft,wong-reece", "--model", help="Models, comma separated."),
+    model: str = typer.Option(
+        "rft,wong-reece", "--model", help="Models, comma separated (rft, drft, wong-reece, rft3d, ...)."
+    ),
     omega: float = OMEGA,
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
     width: float = WHEEL_WIDTH,
@@ -389,6 +391,18 @@ def sweep(
     c1: float = WongReeceOptions.c1,
     c2: float = WongReeceOptions.c2,
     exit_angle: float = WongReeceOptions.exit_angle,
+    slip_definition: str = KinematicsOptions.slip_definition,
+    slip_angle: str = typer.Option(
+        "0",
+        "--slip-angle",
+        help="Slip angles [deg] for rft3d, -90 to 90 exclusive: a list or start:stop:count.",
+    ),
+    mesh: str | None = Wheel3DOptions.mesh,
+    mesh_units: str = Wheel3DOptions.mesh_units,
+    axle: str = Wheel3DOptions.axle,
+    center: str | None = Wheel3DOptions.center,
+    xi: float | None = Wheel3DOptions.xi,
+    cull: bool = Wheel3DOptions.cull,
     scheduler: str = typer.Option(
         "serial", "--scheduler", help="serial, local (Dask processes) or a Dask scheduler address."
     ),
@@ -397,45 +411,121 @@ def sweep(
     out: str | None = OUT,
     plot: str | None = PLOT,
 ) -> None:
-    """Force-slip and sinkage-slip curves over media x models x loads x slips."""
+    """Force-slip and sinkage-slip curves over media x models x loads x slips (x slip angles in 3D)."""
     from ..locomotion import force_slip_sweep
+    from ..locomotion.sweeps import force_slip_sweep_3d
 
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     if workers is not None and not 1 <= workers <= 256:
         raise InputError("--workers", workers, "an integer in [1, 256]")
-    body = wheel_body(shape, width, _shape_flags(shape, sizes))
-    media = [materials.get(m) for m in material.split(",") if m.strip()]
-    if not media:
-        raise InputError("--material", material, "one or more media, comma separated")
+    flags = _shape_flags(shape, sizes)
     names = [m.strip() for m in model.split(",") if m.strip()]
+    spatial = [n for n in names if n.lower() == "rft3d"]
+    plane = [n for n in names if n.lower() != "rft3d"]
     factories = {
-        n: model_factory(n, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size) for n in names
+        n: model_factory(n, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size) for n in plane
     }
-    if not factories:
-        raise InputError("--model", model, f"one or more of {list(MODEL_NAMES)}")
+    if not names:
+        raise InputError("--model", model, f"one or more of {[*MODEL_NAMES, 'rft3d']}")
+    kin = _kinematics(0.0, slip_definition, None, None)
     loads = parse_float_list("--load", load)
     slips = parse_float_list("--slip", slip)
-    total = len(media) * len(factories) * len(loads) * len(slips)
+    for s in slips:
+        if not -1.0 <= s <= 1.0:
+            raise InputError("--slip", slip, "slips in [-1, 1]")
+    angles = parse_float_list("--slip-angle", slip_angle)
+    for a in angles:
+        if not abs(a) < 90.0:
+            raise InputError(
+                "--slip-angle", slip_angle, "angles in (-90, 90) [deg]",
+                "at 90 deg give the speeds: wheel steady --rim-speed --carriage-speed",
+            )  # fmt: skip
+    if not spatial:
+        for flag, value, default in (
+            ("--mesh", mesh, None), ("--xi", xi, None), ("--center", center, None),
+            ("--mesh-units", mesh_units, "m"), ("--axle", axle, "y"), ("--cull", cull, False),
+        ):  # fmt: skip
+            if value != default:
+                raise InputError(flag, value, "only with --model rft3d")
+        if angles != [0.0]:
+            raise InputError("--slip-angle", slip_angle, "only with --model rft3d")
+    material_names = [m.strip() for m in material.split(",") if m.strip()]
+    if not material_names:
+        raise InputError("--material", material, "one or more media, comma separated")
+    media = [materials.get(m) for m in material_names] if plane or xi is None else []
+    tables = []
+    total = len(media) * len(plane) + (len(material_names) if xi is None else 1) * len(spatial) * len(angles)
+    total *= len(loads) * len(slips)
     with progress(total, "wheel sweep") as advance:
-        table = force_slip_sweep(
-            body,
-            media,
-            factories,
-            loads,
-            slips,
-            omega=omega,
-            phase_count=phases,
-            on_point=advance,
-            scheduler=scheduler,
-            workers=workers,
-        )
+        if plane:
+            body = wheel_body(shape, width, flags)
+            tables.append(
+                force_slip_sweep(
+                    body,
+                    media,
+                    factories,
+                    loads,
+                    slips,
+                    omega=omega,
+                    phase_count=phases,
+                    on_point=advance,
+                    scheduler=scheduler,
+                    workers=workers,
+                    slip_definition=kin.definition,
+                )
+            )
+        if spatial:
+            spec = _Wheel3DSpec(mesh, mesh_units, axle, center, cull)
+            wheel, phase_count = _wheel_3d(shape, flags, width, spec, phases)
+            media_3d = [_medium_3d(m, None) for m in material_names] if xi is None else [_medium_3d("", xi)]
+            if cull:
+                from ..locomotion.steady3d import wheel_contact_mesh
+
+                wheel = wheel_contact_mesh(wheel, slip_angle=math.radians(max(angles, key=abs)))
+            tables.append(
+                force_slip_sweep_3d(
+                    wheel,
+                    media_3d,
+                    loads,
+                    slips,
+                    [math.radians(a) for a in angles],
+                    omega=omega,
+                    phase_count=phase_count,
+                    slip_definition=kin.definition,
+                    on_point=advance,
+                    scheduler=scheduler,
+                    workers=workers,
+                )
+            )
+    table = _stack(tables)
     if plot_path is not None:
-        plot_sweep(table.columns, [m.name for m in media], plot_path)
+        plot_sweep(table.columns, sorted(set(table.columns["material"].tolist()), key=str), plot_path)
     failures = table.metadata["failures"]
     if failures:
         first = " ".join(str(failures[0]).split())
         typer.echo(f"terradyn: {len(failures)} point(s) not solved, e.g. {first}", err=True)
     emit(table.records(), fmt, out_path, title="wheel sweep")
+
+
+def _stack(tables: list[Any]) -> Any:
+    """One table from plane and 3D sweep tables (plane rows get slip angle, side force and moment 0)."""
+    if len(tables) == 1:
+        return tables[0]
+    import numpy as np
+
+    from ..results import TableResult
+
+    names = list(tables[-1].columns)
+    cols = {}
+    for name in names:
+        parts = []
+        for t in tables:
+            n = len(t)
+            parts.append(t.columns[name] if name in t.columns else np.zeros(n))
+        cols[name] = np.concatenate(parts)
+    meta = dict(tables[0].metadata)
+    meta["failures"] = [f for t in tables for f in t.metadata["failures"]]
+    return TableResult(cols, meta)
 
 
 def plot_sweep(columns: dict[str, Any], media: list[str], path: Path) -> None:

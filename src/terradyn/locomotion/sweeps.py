@@ -16,7 +16,7 @@ from ..results import TableResult
 from ..terrain import TerrainModel
 from .steady import wheel_steady
 
-__all__ = ["force_slip_sweep"]
+__all__ = ["force_slip_sweep", "force_slip_sweep_3d"]
 
 ModelFactory = Callable[[Material], TerrainModel]
 _VALUES = (
@@ -39,6 +39,7 @@ class _Task:
     slips: tuple[float, ...]
     omega: float
     phase_count: int
+    slip_definition: str = "classic"
 
 
 def _run_task(task: _Task) -> tuple[list[tuple[Any, ...]], list[str]]:
@@ -48,7 +49,10 @@ def _run_task(task: _Task) -> tuple[list[tuple[Any, ...]], list[str]]:
     for load in task.loads:
         for slip in task.slips:
             try:
-                r = wheel_steady(task.body, model, load, slip, omega=task.omega, phase_count=task.phase_count)
+                r = wheel_steady(
+                    task.body, model, load, slip, omega=task.omega, phase_count=task.phase_count,
+                    slip_definition=task.slip_definition,
+                )  # fmt: skip
                 vals = (
                     True,
                     r.sinkage_m,
@@ -77,8 +81,9 @@ def force_slip_sweep(
     on_point: Callable[[int], None] | None = None,
     scheduler: str = "serial",
     workers: int | None = None,
+    slip_definition: str = "classic",
 ) -> TableResult:
-    """Steady solves over media x models x loads x slips.
+    """Steady solves over media x models x loads x slips (``slip_definition``: classic or bounded).
 
     ``models`` maps a model name to a factory ``material -> terrain model`` (a
     :class:`~terradyn.locomotion.models.ModelSpec` is one, and is picklable for ``scheduler`` other than
@@ -96,6 +101,7 @@ def force_slip_sweep(
             tuple(float(v) for v in slips),
             omega,
             phase_count,
+            slip_definition,
         )
         for mat in media
         for name, factory in models.items()
@@ -112,3 +118,99 @@ def force_slip_sweep(
     names = ("material", "model", "load_N", "slip", "solved", *_VALUES)
     cols = {k: np.asarray([row[i] for row in rows]) for i, k in enumerate(names)}
     return TableResult(cols, {"body": repr(body), "omega_rad_s": omega, "failures": failures})
+
+
+@dataclass(frozen=True)
+class _Task3D:
+    mesh: Any
+    medium: Any
+    medium_name: str
+    load: float
+    slip_angle: float
+    slips: tuple[float, ...]
+    options: tuple[tuple[str, Any], ...]
+
+
+_VALUES_3D = (*_VALUES, "side_force_N", "aligning_moment_Nm")
+
+
+def _run_task_3d(task: _Task3D) -> tuple[list[tuple[Any, ...]], list[str]]:
+    """All slips of one (medium, load, slip angle) in 3D RFT: rows of values and failure messages."""
+    from .steady3d import wheel_steady_3d
+
+    rows, failures = [], []
+    for slip in task.slips:
+        try:
+            r = wheel_steady_3d(
+                task.mesh, task.medium, task.load, slip, slip_angle=task.slip_angle, **dict(task.options)
+            )
+            vals: tuple[Any, ...] = (True, *(getattr(r, k) for k in _VALUES_3D))
+        except SolverError as exc:
+            failures.append(
+                f"{task.medium_name}/rft3d/W={task.load:g}/s={slip:g}/"
+                f"angle={np.degrees(task.slip_angle):g} deg: {exc}"
+            )
+            vals = (False, *([0.0] * len(_VALUES_3D)))
+        angle_deg = float(f"{np.degrees(task.slip_angle):.12g}")  # 30, not 29.999999999999996
+        rows.append((task.medium_name, "rft3d", task.load, float(slip), angle_deg, *vals))
+    return rows, failures
+
+
+def force_slip_sweep_3d(
+    mesh: Any,
+    media: Sequence[Material | float],
+    loads: Sequence[float] | np.ndarray,
+    slips: Sequence[float] | np.ndarray,
+    slip_angles: Sequence[float] | np.ndarray = (0.0,),
+    *,
+    omega: float = 1.0,
+    phase_count: int = 1,
+    period: float | None = None,
+    slip_definition: str = "classic",
+    on_point: Callable[[int], None] | None = None,
+    scheduler: str = "serial",
+    workers: int | None = None,
+) -> TableResult:
+    """3D-RFT steady solves of a wheel mesh over media x loads x slips x slip angles [rad].
+
+    Media are Materials or 3D-RFT scales xi [N/m^3]. The columns are those of :func:`force_slip_sweep`
+    (material, model = "rft3d", load_N, slip, solved, sinkage_m, drawbar_pull_N, drive_torque_Nm,
+    power_W, tractive_efficiency, entry_angle_rad) plus slip_angle_deg, side_force_N and
+    aligning_moment_Nm, so the two tables stack. Failed points as there (``solved = False``, zeros,
+    reasons in ``metadata["failures"]``). Each (medium, load, slip angle) is one task of
+    :func:`terradyn.parallel.map_items`.
+    """
+    options = (
+        ("omega", omega), ("phase_count", phase_count), ("period", period),
+        ("slip_definition", slip_definition),
+    )  # fmt: skip
+    tasks = [
+        _Task3D(
+            mesh,
+            medium,
+            medium.name if isinstance(medium, Material) else f"xi={float(medium):g}",
+            float(load),
+            float(angle),
+            tuple(float(v) for v in slips),
+            options,
+        )
+        for medium in media
+        for load in loads
+        for angle in slip_angles
+    ]
+    per_task = len(slips)
+
+    def done(n: int) -> None:
+        if on_point is not None:
+            on_point(n * per_task)
+
+    results = map_items(_run_task_3d, tasks, scheduler=scheduler, workers=workers, on_done=done)
+    rows = [row for task_rows, _ in results for row in task_rows]
+    failures = [f for _, task_failures in results for f in task_failures]
+    names = ("material", "model", "load_N", "slip", "slip_angle_deg", "solved", *_VALUES_3D)
+    cols = {k: np.asarray([row[i] for row in rows]) for i, k in enumerate(names)}
+    meta = {
+        "body": f"mesh of {getattr(mesh, 'facet_count', 0)} facets", "omega_rad_s": omega,
+        "slip_definition": slip_definition, "failures": failures,
+    }  # fmt: skip
+    return TableResult(cols, meta)
