@@ -308,7 +308,7 @@ def optimisation(quick: bool) -> ItemOutput:
 # ------------------------------------------------------------------------------------------ chapter 8
 def high_speed(quick: bool) -> ItemOutput:
     from ..plotting.studies import plot_high_speed
-    from ..studies.high_speed import high_speed_sweep
+    from ..studies.high_speed import high_speed_sweep, slip_onset
 
     res = high_speed_sweep(reduced=quick)
     on = res.onsets.get("drft", {})
@@ -333,6 +333,16 @@ def high_speed(quick: bool) -> ItemOutput:
                 _verdict(abs(w / _PUBLISHED_ONSET - 1) < 0.2),
             )
         )
+    c = res.table.columns
+    m = c["model"] == "drft"
+    margins = []
+    for margin in (0.02, 0.05, 0.1):
+        o = slip_onset(
+            c["omega_rad_s"][m], c["slip"][m], c["sinkage_m"][m], outer_diameter=0.212, slip_margin=margin
+        )
+        value = o["omega_onset_normalised"]
+        margins.append(f"{margin:g}: {'none' if value is None else format(value, '.3f')}")
+    out.findings.append(Finding("DRFT onset omega sqrt(l/g) by slip margin " + ", ".join(margins), "info"))
     out.findings.append(
         Finding(
             f"RFT (rate independent): onset "
