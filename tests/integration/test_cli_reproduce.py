@@ -10,6 +10,7 @@ import pytest
         (("--chapter", "x"), "--chapter"),
         (("--items", "nope"), "--items"),
         (("--workers", "0"), "--workers"),
+        (("--scheduler", "fast"), "--scheduler"),
     ],
 )
 def test_bad_input_is_one_line(run_cli, tmp_path, args, flag):

@@ -46,6 +46,10 @@ def reproduce(
     only = [k.strip() for k in items.split(",") if k.strip()] if items else None
     if items is not None and not only:
         raise InputError("--items", items, "one or more item keys")
+    if scheduler not in ("auto", "serial", "processes", "local") and "://" not in scheduler:
+        raise InputError(
+            "--scheduler", scheduler, "auto, serial, processes, local or a Dask address like tcp://host:8786"
+        )
     if scheduler == "auto":
         scheduler = "serial" if quick else "processes"
     total = len(rows_to_run(folder, chapters=chapters, quick=quick, only=only))
