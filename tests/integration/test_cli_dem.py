@@ -26,8 +26,22 @@ PLATE = ["intrude", "plate", "--length", "0.012", "--depth", "0.004", "--grain-d
 def test_dem_intrude_json_has_the_mpm_keys(run_cli, soft_medium, tmp_path):
     series = tmp_path / "s.csv"
     plot = tmp_path / "f.png"
-    code, out, err = run_cli("dem", *PLATE, "--material", soft_medium, "--packing", "loose", "--speed",
-                             "0.04", "--format", "json", "--series", str(series), "--plot", str(plot))  # fmt: skip
+    code, out, err = run_cli(
+        "dem",
+        *PLATE,
+        "--material",
+        soft_medium,
+        "--packing",
+        "loose",
+        "--speed",
+        "0.04",
+        "--format",
+        "json",
+        "--series",
+        str(series),
+        "--plot",
+        str(plot),
+    )
     assert code == 0, err
     rec = json.loads(out)
     assert set(rec) == {"force_x_N", "force_z_N", "torque_y_Nm"}
@@ -77,3 +91,54 @@ def test_missing_lammps_is_one_line(run_cli, monkeypatch):
         _lammps.load_lammps.cache_clear()
     assert code == 1
     assert err.strip() == "terradyn: error: DEM needs the optional extra: pip install 'terradyn[dem]'"
+
+
+def test_calibrate_rft_from_dem_writes_a_material(run_cli, soft_medium, tmp_path):
+    from terradyn import materials
+
+    toml = tmp_path / "cal.toml"
+    code, out, err = run_cli(
+        "calibrate",
+        "rft",
+        "--from-dem",
+        soft_medium,
+        "--length",
+        "0.012",
+        "--width",
+        "0.01",
+        "--dem-depth",
+        "0.004",
+        "--dem-grain-diameter",
+        "0.002",
+        "--dem-packing",
+        "loose",
+        "--dem-speed",
+        "0.04",
+        "--material-out",
+        str(toml),
+        "--format",
+        "json",
+    )
+    assert code == 0, err
+    rec = json.loads(out)
+    fitted = materials.load(toml)
+    assert fitted.zeta == pytest.approx(rec["zeta_N_per_m3"])
+    assert fitted.dem == materials.load(soft_medium).dem  # the grains the fit came from travel with it
+    # a plate in a bed of 2 mm glass-like grains: zeta of order 1e5-1e7 N/m^3 (dry sands 1e6-1e7)
+    assert 1e5 < rec["zeta_N_per_m3"] < 1e7
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        (["data.csv", "--from-dem", "MS"], "DATA"),
+        (["--from-dem", "MS", "--dem-directions", "0"], "--dem-directions"),
+        (["--from-dem", "MS", "--dem-packing", "tight"], "--dem-packing"),
+        (["--from-dem", "nosuch"], "material"),
+        ([], "DATA"),
+    ],
+)
+def test_calibrate_from_dem_bad_input(run_cli, args, needle):
+    code, _, err = run_cli("calibrate", "rft", "--length", "0.01", "--width", "0.01", *args)
+    assert code == 1, err
+    assert needle in err and len(err.strip().splitlines()) == 1

@@ -3,32 +3,51 @@
 from __future__ import annotations
 
 import dataclasses
+from typing import Any
 
 import typer
 
 from ..errors import InputError
 from ._common import OutputFormat, emit
-from .options import FORMAT, MATERIAL, OUT, input_file, out_file
+from .options import FORMAT, MATERIAL, OUT, input_file, out_file, with_flags
 
 app = typer.Typer(
     help="Fit RFT, Bekker or MPM parameters to measurements.", no_args_is_help=True, rich_markup_mode=None
 )
 
 
+def _dem_flags() -> Any:
+    from .dem_cmd import DEM_CALIBRATION_FLAGS
+
+    return with_flags("dem", DEM_CALIBRATION_FLAGS)
+
+
 @app.command("rft")
+@_dem_flags()
 def calibrate_rft(
-    data: str = typer.Argument(..., help="CSV: depth_m, force_z_N [, force_x_N, angle_deg, direction_deg]."),
+    data: str | None = typer.Argument(
+        None, help="CSV: depth_m, force_z_N [, force_x_N, angle_deg, direction_deg] (or --from-dem)."
+    ),
     length: float = typer.Option(..., "--length", help="Plate length [m]."),
     width: float = typer.Option(..., "--width", help="Plate width (out of plane) [m]."),
     full: bool = typer.Option(False, "--full", help="Fit all nine coefficients, not only zeta."),
     name: str = typer.Option("calibrated", "--name", help="Name of the new material."),
     material_out: str | None = typer.Option(None, "--material-out", help="Write a material TOML (.toml)."),
+    from_dem: str | None = typer.Option(
+        None, "--from-dem", help="Medium (name or TOML) to run DEM virtual plate tests in instead of DATA."
+    ),
+    dem: dict[str, Any] = {},  # the --dem-* flags of the virtual plate test (DEM_CALIBRATION_FLAGS)  # noqa: B006
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
 ) -> None:
-    """Fit the RFT scale zeta (or the full alpha fit) to plate force-depth data."""
+    """Fit the RFT scale zeta (or the full alpha fit) to plate force-depth data or DEM plate tests."""
     from ..rft.calibration import fit_rft, read_plate_force_csv, write_rft_material_toml
 
+    if from_dem is not None or data is None:
+        from .dem_cmd import calibrate_from_dem
+
+        return calibrate_from_dem(data, from_dem, length=length, width=width, full=full, name=name,
+                                  material_out=material_out, fmt=fmt, out=out, **dem)  # fmt: skip
     data_path = input_file("DATA", data)
     assert data_path is not None
     toml_path = out_file("--material-out", material_out, (".toml",))

@@ -182,3 +182,102 @@ def intrude(
         for p in (ckpt, ckpt.with_name(ckpt.name + ".json")):
             p.unlink(missing_ok=True)
     emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out_path)
+
+
+#: the flags of ``terradyn calibrate rft --from-dem`` (the virtual plate test)
+DEM_CALIBRATION_FLAGS: dict[str, tuple[Any, Any]] = {
+    "dem_angles": (str, typer.Option("0", "--dem-angles", help="Plate angles [deg] of the DEM tests.")),
+    "dem_directions": (
+        str,
+        typer.Option("90", "--dem-directions", help="Motion directions [deg] below +x of the DEM tests."),
+    ),
+    "dem_depth": (
+        float | None,
+        typer.Option(None, "--dem-depth", help="Final plate depth [m] of the DEM tests (default: --length)."),
+    ),
+    "dem_grain_diameter": (
+        float | None,
+        typer.Option(None, "--dem-grain-diameter", help="Grain diameter [m] (default: the medium's [dem])."),
+    ),
+    "dem_packing": (str, typer.Option("dense", "--dem-packing", help="DEM bed preparation: dense or loose.")),
+    "dem_speed": (float, typer.Option(0.02, "--dem-speed", help="Intrusion speed [m/s] of the DEM tests.")),
+}
+
+
+def calibrate_from_dem(
+    data: str | None, from_dem: str | None, *, length: float, width: float, full: bool, name: str,
+    material_out: str | None, fmt: OutputFormat, out: str | None, dem_angles: str, dem_directions: str,
+    dem_depth: float | None, dem_grain_diameter: float | None, dem_packing: str, dem_speed: float,
+) -> None:  # fmt: skip
+    """``terradyn calibrate rft --from-dem MATERIAL``: DEM virtual plate tests, then the RFT fit."""
+    import dataclasses
+
+    from ..dem import load_lammps
+    from ..dem.calibration import virtual_plate_test
+    from ..errors import check_length
+    from ..materials import RFTParameters, write_material
+    from ..rft.calibration import fit_rft
+    from ._common import parse_float_list
+
+    if data is not None:
+        raise InputError("DATA", data, "either a DATA file or --from-dem, not both")
+    if from_dem is None:
+        raise InputError("DATA", None, "a plate force CSV file, or --from-dem MATERIAL for DEM plate tests")
+    toml_path = out_file("--material-out", material_out, (".toml",))
+    out_path = out_file("--out", out)
+    if not name.strip():
+        raise InputError("--name", name, "a non-empty material name")
+    length = check_length("--length", length)
+    width = check_length("--width", width)
+    base = materials.get(from_dem)
+    base.require_dem()
+    angles = [math.radians(a) for a in parse_float_list("--dem-angles", dem_angles)]
+    directions = parse_float_list("--dem-directions", dem_directions)
+    for g in directions:
+        if not 3.0 <= g <= 177.0:
+            raise InputError("--dem-directions", g, "directions in [3, 177] [deg] below +x (into the bed)")
+    depth = length if dem_depth is None else check_length("--dem-depth", dem_depth)
+    if dem_packing not in ("dense", "loose"):
+        raise InputError("--dem-packing", dem_packing, "dense or loose")
+    if not (math.isfinite(dem_speed) and dem_speed > 0):
+        raise InputError("--dem-speed", dem_speed, "a speed > 0 [m/s]")
+    load_lammps()
+    with fraction_progress("DEM virtual plate tests", "runs") as bar:
+        test = virtual_plate_test(
+            base, plate_length=length, plate_width=width, angles=angles,
+            directions=[math.radians(g) for g in directions], depth=depth,
+            grain_diameter=dem_grain_diameter, packing=dem_packing, speed=dem_speed,
+            progress=lambda done, total: bar(done, done / total),
+        )  # fmt: skip
+    fit = fit_rft(test.data, plate_length=length, plate_width=width, full=full)
+    from ..dem._lammps import mpi_rank
+
+    if mpi_rank() != 0:
+        return
+    rec: dict[str, Any] = {
+        "zeta_N_per_m3": fit.zeta,
+        "r_squared": fit.r_squared,
+        "rms_residual_N": fit.rms_residual_N,
+        "values_fitted": fit.point_count,
+        "full": fit.full,
+        "dem_runs": len(test.cases),
+        "grain_count": test.bed["grain_count"],
+        "packing_fraction": test.bed["packing_fraction"],
+    }
+    if toml_path is not None:
+        notes = (
+            f"RFT {'coefficients' if fit.full else 'zeta (generic alpha shape)'} fitted by terradyn "
+            f"calibrate rft --from-dem {base.name} to {len(test.cases)} DEM plate intrusions "
+            f"(plate {length:g} m, to {depth:g} m, {test.bed['grain_count']} grains of "
+            f"{test.bed['grain_diameter_m']:g} m, packing fraction {test.bed['packing_fraction']:.3f}); "
+            f"R^2 = {fit.r_squared:.4f}; other parameters from {base.name}."
+        )
+        rft = RFTParameters(fit.rft.coefficients, fit.rft.scale)
+        fitted = base.with_changes(
+            name=name,
+            rft=rft,
+            description=f"RFT fit to DEM virtual plate tests in {base.name}",
+            provenance=dataclasses.replace(base.provenance, notes=notes, table=""),
+        )
+        write_material(toml_path, fitted)
+    emit(rec, fmt, out_path)
