@@ -249,3 +249,28 @@ def test_visibility_kernel_matches_the_reference():
     for angle in (0.0, 0.3, -1.2):
         d = wheel_contact_directions(angle, count=8)
         np.testing.assert_array_equal(visible_facets(small, d), _visible_facets_reference(small, d))
+
+
+def test_numpy_stl_reader_matches_trimesh(tmp_path, lugged):
+    trimesh = pytest.importorskip("trimesh")
+    from terradyn.geometry3d import load_mesh, save_mesh
+    from terradyn.geometry3d.mesh import _read_closed_stl
+
+    binary = save_mesh(lugged, tmp_path / "lugged.stl")
+    ascii_path = tmp_path / "lugged_ascii.stl"
+    ascii_path.write_bytes(
+        trimesh.Trimesh(lugged.vertices, lugged.faces, process=False).export(file_type="stl_ascii").encode()
+    )
+    ref = trimesh.load(str(binary), force="mesh", process=True)
+    for path in (binary, ascii_path):
+        fast = _read_closed_stl(path)
+        assert fast is not None and fast.vertex_count == len(ref.vertices)
+        assert fast.volume == pytest.approx(float(ref.volume), rel=1e-6) and fast.volume > 0
+        assert load_mesh(path).facet_count == lugged.facet_count
+    # reversed winding is flipped outward; an open mesh is left to trimesh (which refuses it)
+    flipped = save_mesh(TriangleMesh(lugged.vertices, lugged.faces[:, ::-1]), tmp_path / "flipped.stl")
+    assert load_mesh(flipped).volume == pytest.approx(lugged.volume, rel=1e-5)
+    open_path = save_mesh(TriangleMesh(lugged.vertices, lugged.faces[1:]), tmp_path / "open.stl")
+    assert _read_closed_stl(open_path) is None
+    with pytest.raises(InputError):
+        load_mesh(open_path)

@@ -194,8 +194,6 @@ def wheel_period_3d(mesh: TriangleMesh, *, tolerance: float | None = None) -> fl
     Returns 2 pi when the mesh has no rotational symmetry; a meshed cylinder of N rim quads gives
     2 pi / N.
     """
-    from scipy.spatial import cKDTree
-
     _check_mesh(mesh)
     v = mesh.vertices
     rho = np.hypot(v[:, 0], v[:, 2])
@@ -205,13 +203,57 @@ def wheel_period_3d(mesh: TriangleMesh, *, tolerance: float | None = None) -> fl
     angles = np.sort(np.arctan2(outer[:, 2], outer[:, 0]))
     gaps = np.diff(np.concatenate((angles, angles[:1] + 2.0 * math.pi)))
     distinct = max(1, int(np.count_nonzero(gaps > tol / rmax)))
-    tree = cKDTree(v)
+    grid = _PointGrid(v, tol)
     for k in sorted((d for d in range(2, distinct + 1) if distinct % d == 0), reverse=True):
         rot = _rotations_y(np.array([2.0 * math.pi / k]))[0]
-        dist, _ = tree.query(v @ rot.T, distance_upper_bound=tol)
-        if np.all(np.isfinite(dist)):
+        if grid.all_near(v @ rot.T):
             return 2.0 * math.pi / k
     return 2.0 * math.pi
+
+
+class _PointGrid:
+    """Points hashed on a grid of cell ``tol``: does every query point lie within ``tol`` of one?
+
+    NumPy only (scipy.spatial costs a quarter of a second to import in a CLI call). A point within tol
+    of q lies in one of the 27 cells around q's; each cell is looked up by a sorted integer code. If
+    some cell holds several points (points closer than tol), the first one found is checked and a
+    miss falls back to a brute-force check of that query point.
+    """
+
+    def __init__(self, points: NDArray[np.float64], tol: float) -> None:
+        self.points, self.tol = points, tol
+        self.origin = points.min(axis=0) - 2.0 * tol
+        cells = np.floor((points - self.origin) / tol).astype(np.int64)
+        self.base = int(cells.max()) + 3
+        codes = self._code(cells)
+        self.order = np.argsort(codes, kind="stable")
+        self.codes = codes[self.order]
+
+    def _code(self, cells: NDArray[np.int64]) -> NDArray[np.int64]:
+        b = self.base
+        return (cells[:, 0] * b + cells[:, 1]) * b + cells[:, 2]
+
+    def all_near(self, queries: NDArray[np.float64]) -> bool:
+        cells = np.floor((queries - self.origin) / self.tol).astype(np.int64)
+        if np.any(cells < 1) or np.any(cells > self.base - 2):
+            return False
+        found = np.zeros(queries.shape[0], dtype=bool)
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for dz in (-1, 0, 1):
+                    todo = ~found
+                    if not np.any(todo):
+                        return True
+                    code = self._code(cells[todo] + np.array([dx, dy, dz]))
+                    at = np.minimum(np.searchsorted(self.codes, code), self.codes.size - 1)
+                    hit = self.codes[at] == code
+                    near = self.points[self.order[at]]
+                    close = hit & (np.linalg.norm(near - queries[todo], axis=1) <= self.tol)
+                    found[np.nonzero(todo)[0][close]] = True
+        for i in np.nonzero(~found)[0]:  # a crowded cell: check the point against all
+            if not np.any(np.linalg.norm(self.points - queries[i], axis=1) <= self.tol):
+                return False
+        return True
 
 
 def _check_mesh(mesh: TriangleMesh) -> TriangleMesh:
