@@ -171,3 +171,18 @@ def test_replay_calibration_recovers_the_excavation_coefficient():
     fit = res.calibration.parameters
     assert fit["excavation"] == pytest.approx(0.8, abs=0.1)
     assert fit["scale"] == pytest.approx(1.0, rel=0.03)
+
+
+def test_3d_replay_with_the_effect_off_matches_the_compiled_rft3d_solve():
+    """rft3d-ss runs through terradyn.replay.solve (Python root find on rft3d_facet_tractions), rft3d
+    through the compiled wheel_steady_3d: two independent paths, same answer when the effect is off."""
+    runs = design_runs(loads=(20.0,), slips=(-1.0, 0.4), grousered=False, slip_angles_deg=(0.0, 90.0))
+    runs.append({**runs[1], "run_id": "sinkage", "load_N": None, "prescribed_sinkage_m": 0.012})
+    t = runs_from_records([{**r, "drawbar_pull_N": 0.0} for r in runs])
+    a = replay(t, ReplayModel("rft3d-ss", excavation=0.0, bulldozing=0.0))
+    b = replay(t, ReplayModel("rft3d"))
+    for ra, rb in zip(a.runs, b.runs, strict=True):
+        assert ra["solved"] and rb["solved"], (ra["reason"], rb["reason"])
+        assert ra["predicted_sinkage_m"] == pytest.approx(rb["predicted_sinkage_m"], rel=1e-7)
+        for q in ("drawbar_pull_N", "side_force_N", "drive_torque_Nm"):
+            assert ra[f"predicted_{q}"] == pytest.approx(rb[f"predicted_{q}"], rel=1e-6, abs=1e-7), q

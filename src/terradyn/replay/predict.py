@@ -4,9 +4,12 @@ Models (:data:`REPLAY_MODELS`): ``rft`` (plane RFT, Li et al. 2013), ``drft`` (d
 (Wong-Reece rigid wheel), ``rft3d`` (3D RFT, Agarwal et al. 2023), and the slip-sinkage models of
 :mod:`terradyn.rft.slip_sinkage`: ``rft-ss`` (2D) and ``rft3d-ss`` (3D). Plane models predict force per
 width times the wheel width; they cannot take a slip angle or a mesh (such a run is reported as not
-replayed, with the reason). Load-control runs that the library's steady solvers accept (omega > 0,
-``1 - V/(omega r)`` in [-1, 1], |slip angle| < 90 deg) go through them; the others (locked wheel, deep
-skid, 90 deg) through the twist-based solver of :mod:`terradyn.replay.solve`.
+replayed, with the reason). Load-control runs of rft, drft, wong-reece, rft-ss and rft3d go through the
+library's steady solvers (:func:`terradyn.locomotion.wheel_steady` with the bounded slip,
+:func:`~terradyn.locomotion.steady3d.wheel_steady_3d` with the rim and carriage speeds); rft3d-ss runs
+through the twist-based solver of :mod:`terradyn.replay.solve`. Sinkage control sets the axle height
+with :func:`terradyn.locomotion.prescribed.axle_height_for_sinkage` (period-mean depth of the lowest
+point, as the reported sinkage).
 """
 
 from __future__ import annotations
@@ -145,14 +148,11 @@ def _mesh_3d(wheel: WheelSpec) -> Any:
 
 
 def _speeds(row: RunRow, radius: float) -> tuple[float, float]:
-    """(omega [rad/s], travel speed [m/s]) of a run; a run given by slip alone runs at omega = 1 rad/s
-    (or, locked, at V = 1 x r per second)."""
+    """(rim speed U = omega r, travel speed V) [m/s] of a run; a run given by slip alone runs with
+    max(U, V) = r x 1 rad/s (omega = 1 rad/s unless it skids)."""
     if row.speeds_given:
-        return row.omega_r / radius, row.travel_speed
-    if row.omega_r > 0:
-        f = radius / row.omega_r
-        return 1.0, row.travel_speed * f
-    return 0.0, radius
+        return row.omega_r, row.travel_speed
+    return row.omega_r * radius, row.travel_speed * radius
 
 
 def predict_run(row: RunRow, model: ReplayModel) -> Prediction:
@@ -205,33 +205,28 @@ def _predict_2d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
     body = _body_2d(row.wheel)
     terrain = _model_2d(model, _material(row.medium))
     radius = wheel_nominal_radius(body)
-    omega, speed = _speeds(row, radius)
+    rim, speed = _speeds(row, radius)
     period = wheel_rotation_period(body)
     phases = 1 if period is None else model.phase_count
     thetas = np.zeros(1) if period is None else np.arange(phases) * period / phases
-    if row.load is not None and omega > 0 and speed <= 2.0 * omega * radius:
+    if row.load is not None:
+        # bounded slip: the spin reference omega sets max(omega r, V) = omega_ref r
         res = wheel_steady(
-            body, terrain, row.load, 1.0 - speed / (omega * radius), omega=omega, phase_count=phases
-        )
+            body, terrain, row.load, row.slip, omega=max(rim, speed) / radius, phase_count=phases,
+            slip_definition="bounded",
+        )  # fmt: skip
         return _values(res.drawbar_pull_N, res.drive_torque_Nm, res.sinkage_m, None, row.load)
-    twist = Twist2D(speed, 0.0, omega)
+    from ..locomotion.prescribed import axle_height_for_sinkage
+
+    assert row.prescribed_sinkage is not None
+    twist = Twist2D(speed, 0.0, rim / radius)
     surface = float(getattr(terrain, "surface_level", 0.0))
 
     def phase_wrench(z: float) -> np.ndarray:
         return np.array([terrain.wrench(body, Pose2D(0.0, z, float(t)), twist).as_array() for t in thetas])
 
     lowest = _lowest_2d(body, thetas)
-    if row.load is not None:
-        from .solve import solve_load
-
-        def mean_wrench(heights: np.ndarray) -> np.ndarray:
-            return np.array([phase_wrench(float(z)).mean(axis=0) for z in heights])
-
-        top = surface - float(lowest.min())
-        z = solve_load(mean_wrench, 1, row.load, surface, top, _what(row))
-    else:
-        assert row.prescribed_sinkage is not None
-        z = surface + radius - row.prescribed_sinkage
+    z = axle_height_for_sinkage(lowest, row.prescribed_sinkage, surface)
     from .solve import state_at_height
 
     w, sink = state_at_height(phase_wrench, lowest, z, surface)
@@ -274,7 +269,12 @@ def _phases_3d(mesh: Any, wheel: WheelSpec, model: ReplayModel) -> np.ndarray:
 
 
 def _predict_3d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
-    from ..locomotion.steady3d import _rotations_y, wheel_nominal_radius_3d, wheel_steady_3d
+    from ..locomotion.steady3d import (
+        _rotations_y,
+        wheel_kinematics_3d,
+        wheel_nominal_radius_3d,
+        wheel_steady_3d,
+    )
     from ..rft.rft3d import agarwal2023_xi_material
 
     mesh = _mesh_3d(row.wheel)
@@ -283,19 +283,31 @@ def _predict_3d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
     friction = material.surface_friction
     friction = None if friction is None or friction == math.inf else float(friction)
     radius = wheel_nominal_radius_3d(mesh)
-    omega, speed = _speeds(row, radius)
-    vx, vy = speed * math.cos(row.slip_angle), speed * math.sin(row.slip_angle)
+    rim, speed = _speeds(row, radius)
+    omega = rim / radius
+    if speed > 0.0:  # the kinematics of wheel_steady_3d (at 90 deg: the limit from below, V_x = 1e-9 V)
+        kin = wheel_kinematics_3d(
+            radius, rim_speed=rim, carriage_speed=speed, slip_angle=row.slip_angle, slip_definition="bounded"
+        )
+        vx, vy = kin.longitudinal_velocity, kin.lateral_velocity
+    else:
+        vx, vy = 0.0, 0.0
     thetas = _phases_3d(mesh, row.wheel, model)
-    direct = (
-        model.name == "rft3d" and row.load is not None and omega > 0 and abs(row.slip_angle) < 0.5 * math.pi
-        and vx <= 2.0 * omega * radius
-    )  # fmt: skip
-    if direct:
-        assert row.load is not None
+    if model.name == "rft3d" and row.load is not None:
+        kinematics: dict[str, Any] = (
+            {
+                "rim_speed": rim,
+                "carriage_speed": speed,
+                "slip_angle": row.slip_angle,
+                "slip_definition": "bounded",
+            }
+            if speed > 0.0
+            else {"slip": 1.0, "omega": omega}  # spinning in place: no travel, no slip angle
+        )
         res = wheel_steady_3d(
-            mesh, xi, row.load, 1.0 - vx / (omega * radius), slip_angle=row.slip_angle, omega=omega,
-            nominal_radius=radius, phase_count=thetas.size,
+            mesh, xi, row.load, nominal_radius=radius, phase_count=thetas.size,
             period=None if thetas.size == 1 else float(thetas[1] * thetas.size), surface_friction=friction,
+            **kinematics,
         )  # fmt: skip
         return _values(res.drawbar_pull_N, res.drive_torque_Nm, res.sinkage_m, res.side_force_N, row.load)
     rotations = _rotations_y(thetas)
@@ -332,8 +344,10 @@ def _predict_3d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
 
         z = solve_load(lambda h: many(h).mean(axis=1), 2, row.load, 0.0, -float(lowest.min()), _what(row))
     else:
+        from ..locomotion.prescribed import axle_height_for_sinkage
+
         assert row.prescribed_sinkage is not None
-        z = radius - row.prescribed_sinkage
+        z = axle_height_for_sinkage(lowest, row.prescribed_sinkage, 0.0)
     from .solve import state_at_height
 
     w, sink = state_at_height(lambda h: many(np.array([h]))[0], lowest, z, 0.0)

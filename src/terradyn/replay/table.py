@@ -54,7 +54,7 @@ COLUMNS: dict[str, str] = {
     "mesh_file": "wheel mesh (STL/OBJ/PLY), axle along y through the origin, path relative to the table",
     "mesh_units": "units of the mesh file coordinates: m (default) or mm",
     "load_N": "vertical load on the axle [N] (load control)",
-    "prescribed_sinkage_m": "depth of the wheel's outer radius below the surface [m] (sinkage control)",
+    "prescribed_sinkage_m": "period-mean depth of the wheel's lowest point [m] (sinkage control)",
     "slip": "rig slip (omega r - V) / max(omega r, V) [-], in [-1, 1]",
     "rim_speed_m_s": "rim speed omega r [m/s] (>= 0), with carriage_speed_m_s instead of slip",
     "carriage_speed_m_s": "speed of the axle over the ground [m/s] (>= 0)",
@@ -141,9 +141,11 @@ class RunsTable:
 
 
 def rig_slip(omega_r: float, travel_speed: float) -> float:
-    """Rig slip (omega r - V) / max(omega r, V) [-] of a rim speed and a travel speed [m/s] (0 at rest)."""
-    top = max(omega_r, travel_speed)
-    return 0.0 if top <= 0.0 else (omega_r - travel_speed) / top
+    """Rig slip (omega r - V) / max(omega r, V) [-] of a rim speed and a travel speed [m/s]: the bounded
+    definition of :func:`terradyn.kinematics.slip_from_speeds`."""
+    from ..kinematics import slip_from_speeds
+
+    return slip_from_speeds(omega_r, travel_speed, definition="bounded")
 
 
 class _Cells:
