@@ -460,7 +460,7 @@ def wedges(quick: bool) -> ItemOutput:
         out.findings.append(
             Finding(
                 f"asymmetric wedges: lateral / plate vertical force {float(np.min(lat)):+.3f} to "
-                f"{float(np.max(lat)):+.3f} (sign set by the steeper face)",
+                f"{float(np.max(lat)):+.3f} (tip offset > 0: positive; it flips with the offset)",
                 "info",
             )
         )
