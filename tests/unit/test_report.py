@@ -110,3 +110,18 @@ def test_numbers_of_the_reworked_studies(quick_report):
         lift["half-cylinder-flat-up_lift_over_drag"] > 0
         and lift["half-cylinder-flat-down_lift_over_drag"] > 0
     )
+
+
+def test_a_plugged_row_runs_and_dem_rows_need_terradyn_dem(tmp_path, monkeypatch):
+    import terradyn.report.registry as registry
+
+    registry.rows_of(registry.item("ch9-superposition"))  # load the shipped rows first
+    monkeypatch.setitem(registry._ROWS, ("ch9-superposition", "mpm"), "terradyn.report.rows:superposition")
+    run = reproduce(tmp_path, quick=True, only=["ch9-superposition"])
+    assert run.results[("ch9-superposition", "mpm")]["status"] == "ran"
+    assert "<b>MPM</b> (" in (tmp_path / "report.html").read_text(encoding="utf-8")
+    plate = registry.item("ch4-plate-depth")
+    monkeypatch.setattr(registry, "dem_available", lambda: False)
+    assert "dem" not in [m for m, _ in registry.rows_of(plate)]
+    monkeypatch.setattr(registry, "dem_available", lambda: True)
+    assert "dem" in [m for m, _ in registry.rows_of(plate)]
