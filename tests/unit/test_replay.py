@@ -223,3 +223,26 @@ def test_processes_scheduler_gives_the_serial_answer():
     a = replay(t, ReplayModel("rft"))
     b = replay(t, ReplayModel("rft"), scheduler="processes", workers=2)
     assert [r["predicted_drawbar_pull_N"] for r in a.runs] == [r["predicted_drawbar_pull_N"] for r in b.runs]
+
+
+def test_mesh_wheel_in_mm_with_axle_z_and_offset_origin_gives_the_primitive_answer(tmp_path):
+    from terradyn.geometry3d import TriangleMesh, save_mesh, wheel_cylinder
+
+    body = wheel_cylinder(0.0625, 0.06, circumferential_resolution=360, axial_resolution=2)
+    to_file = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])  # body y -> file z
+    verts = (body.vertices @ to_file.T + np.array([0.2, -0.1, 0.05])) * 1e3
+    save_mesh(TriangleMesh(verts, body.faces), tmp_path / "wheel_mm.stl")
+    base = {"medium": "MS", "load_N": 20.0, "slip": 0.3, "slip_angle_deg": 30.0, "drawbar_pull_N": 0.0}
+    recs = [
+        {**base, "run_id": "primitive", "radius_m": 0.0625, "width_m": 0.06},
+        {**base, "run_id": "mesh", "mesh_file": "wheel_mm.stl", "mesh_units": "mm", "mesh_axle": "z"},
+    ]
+    (tmp_path / "runs.csv").write_text(records_to_csv(recs))
+    a, b = replay(read_runs(tmp_path / "runs.csv"), ReplayModel("rft3d")).runs
+    for q in ("sinkage_m", "drawbar_pull_N", "side_force_N", "drive_torque_Nm"):
+        assert b[f"predicted_{q}"] == pytest.approx(a[f"predicted_{q}"], rel=1e-4, abs=1e-6), q
+    recs[1]["mesh_units"] = "m"  # a 125 m wheel: refused, naming the row and the column
+    (tmp_path / "runs.csv").write_text(records_to_csv(recs))
+    with pytest.raises(InputError, match=r"runs.csv row 2 column mesh_file") as exc:
+        replay(read_runs(tmp_path / "runs.csv"), ReplayModel("rft3d"))
+    assert "\n" not in str(exc.value)

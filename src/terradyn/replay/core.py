@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import InputError, check_range
 from ..parallel import map_items
-from .predict import Prediction, ReplayModel, check_rows_for, predict_task
+from .predict import Prediction, ReplayModel, check_meshes, check_rows_for, predict_task
 from .table import QUANTITIES, RunRow, RunsTable
 
 __all__ = [
@@ -290,6 +290,8 @@ def calibrate_table(
 ) -> tuple[ReplayModel, CalibrationResult]:
     """Split the table (:func:`split_runs`) and fit the model on the calibration runs."""
     check_rows_for(model, table.rows)
+    if model.is_3d:
+        check_meshes(table.rows, table.source)
     cal, _ = split_runs(table, calibrate_on, seed=seed)
     cal_set = set(cal)
     fitted, fit = calibrate(
@@ -327,6 +329,8 @@ def replay(
     if group_by is not None and group_by not in table.extra_columns and group_by != "medium":
         raise InputError("group_by", group_by, f"a column of the table: {[*table.extra_columns, 'medium']}")
     check_rows_for(model, table.rows)
+    if model.is_3d:
+        check_meshes(table.rows, table.source)
     if calibrate_on is not None and calibration is not None:
         raise InputError("calibration", "given twice", "calibrate_on or an earlier calibration, not both")
     if calibrate_on is not None:

@@ -113,10 +113,32 @@ def _material(name: str) -> Any:
 
 
 @lru_cache(maxsize=8)
-def _mesh(path: str, units: str) -> Any:
-    from ..geometry3d import load_mesh
+def _mesh(path: str, units: str, axle: str) -> Any:
+    """A wheel mesh file in the body frame (:func:`terradyn.geometry3d.wheel.load_wheel_mesh`: units,
+    axle to +y, axle centre fitted, plausibility checked)."""
+    from ..geometry3d.wheel import load_wheel_mesh
 
-    return load_mesh(path, scale=1e-3 if units == "mm" else 1.0)
+    return load_wheel_mesh(path, units=units, axle=axle)[0]
+
+
+def check_meshes(rows: Any, source: str = "runs") -> None:
+    """Load every distinct mesh of the rows once; a bad one raises naming its first row and column."""
+    seen: set[tuple[str, str, str]] = set()
+    for row in rows:
+        w = row.wheel
+        if not w.is_mesh:
+            continue
+        key = (w.mesh_file, w.mesh_units, w.mesh_axle)
+        if key in seen:
+            continue
+        seen.add(key)
+        try:
+            _mesh(*key)
+        except InputError as exc:
+            raise InputError(
+                f"{source} row {row.index} column mesh_file", w.mesh_file, "a wheel mesh terradyn can place",
+                " ".join(str(exc).split()),
+            ) from None  # fmt: skip
 
 
 @lru_cache(maxsize=64)
@@ -137,7 +159,7 @@ def _mesh_3d(wheel: WheelSpec) -> Any:
 
     if wheel.is_mesh:
         assert wheel.mesh_file is not None
-        return _mesh(wheel.mesh_file, wheel.mesh_units)
+        return _mesh(wheel.mesh_file, wheel.mesh_units, wheel.mesh_axle)
     assert wheel.radius is not None and wheel.width is not None
     if wheel.shape == "circular":
         return wheel_cylinder(wheel.radius, wheel.width, circumferential_resolution=360, axial_resolution=2)

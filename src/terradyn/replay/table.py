@@ -51,8 +51,9 @@ COLUMNS: dict[str, str] = {
     "grouser_count": "number of grousers (lugs) [-] (grousered wheels)",
     "grouser_height_m": "grouser height above the rim [m]",
     "grouser_thickness_m": "grouser thickness [m]",
-    "mesh_file": "wheel mesh (STL/OBJ/PLY), axle along y through the origin, path relative to the table",
-    "mesh_units": "units of the mesh file coordinates: m (default) or mm",
+    "mesh_file": "wheel mesh (STL/OBJ/PLY), closed; path relative to the table",
+    "mesh_units": "units of the mesh file coordinates: m (default), cm or mm",
+    "mesh_axle": "file axis the wheel turns about: x, y (default) or z (axle centre fitted)",
     "load_N": "vertical load on the axle [N] (load control)",
     "prescribed_sinkage_m": "period-mean depth of the wheel's lowest point [m] (sinkage control)",
     "slip": "rig slip (omega r - V) / max(omega r, V) [-], in [-1, 1]",
@@ -78,6 +79,7 @@ class WheelSpec:
     grouser_thickness: float = 0.0
     mesh_file: str | None = None
     mesh_units: str = "m"
+    mesh_axle: str = "y"
 
     @property
     def is_mesh(self) -> bool:
@@ -255,8 +257,9 @@ def _wheel(c: _Cells, base: Path | None) -> WheelSpec:
         path = Path(mesh) if base is None or Path(mesh).is_absolute() else base / mesh
         if not path.is_file():
             raise c.fail("mesh_file", mesh, "an existing mesh file", f"{path} does not exist")
-        units = c.choice("mesh_units", ("m", "mm"), "m")
-        return WheelSpec(shape="mesh", mesh_file=str(path), mesh_units=units)
+        units = c.choice("mesh_units", ("m", "cm", "mm"), "m")
+        axle = c.choice("mesh_axle", ("x", "y", "z"), "y")
+        return WheelSpec(shape="mesh", mesh_file=str(path), mesh_units=units, mesh_axle=axle)
     shape = c.choice("shape", ("circular", "grousered"), "circular")
     radius = c.number("radius_m", low=0.0, strict_low=True, unit="m")
     width = c.number("width_m", low=0.0, strict_low=True, unit="m")
