@@ -718,3 +718,43 @@ def plot_onset_criterion(fit: OnsetFit) -> Any:
     ax.grid(True, alpha=0.35)
     ax.legend(fontsize=7)
     return fig
+
+
+def _register() -> None:
+    from pydantic import Field
+
+    from .registry import StudyOutput, _Params, register_study
+
+    class OnsetCriterionParams(_Params):
+        material: str = "poppy-cp"
+        slip_margin: float = Field(0.05, gt=0, lt=1)
+
+    def run(p: OnsetCriterionParams) -> StudyOutput:
+        fit = fit_onset_criterion(material=p.material, slip_margin=p.slip_margin, reduced=p.quick)
+        summary = [
+            {
+                "criterion": fit.formula,
+                "r_squared": fit.r_squared,
+                "max_relative_error": fit.max_relative_error,
+                "cases": len(fit.table),
+            },
+            {
+                "criterion": fit.alternative["formula"],
+                "r_squared": fit.alternative["r_squared"],
+                "max_relative_error": fit.alternative["max_relative_error"],
+                "cases": len(fit.table),
+            },
+        ]
+        return StudyOutput(
+            {"onset_criterion": fit.table}, {"onset_criterion": plot_onset_criterion(fit)}, summary
+        )
+
+    register_study(
+        "high-speed-criterion",
+        OnsetCriterionParams,
+        run,
+        "slip-onset criterion of the high-speed wheel as a formula in the dimensionless groups (ch. 8)",
+    )
+
+
+_register()
