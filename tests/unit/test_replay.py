@@ -246,3 +246,13 @@ def test_mesh_wheel_in_mm_with_axle_z_and_offset_origin_gives_the_primitive_answ
     with pytest.raises(InputError, match=r"runs.csv row 2 column mesh_file") as exc:
         replay(read_runs(tmp_path / "runs.csv"), ReplayModel("rft3d"))
     assert "\n" not in str(exc.value)
+
+
+@pytest.mark.slow
+def test_dask_local_cluster_gives_the_serial_answer():
+    pytest.importorskip("dask.distributed")
+    recs = synthetic_records(ReplayModel("rft"), design_runs(grousered=False, loads=(20,), slips=(0.0, 0.5)))
+    t = runs_from_records(recs)
+    a = replay(t, ReplayModel("rft"))
+    b = replay(t, ReplayModel("rft"), scheduler="local", workers=2)
+    assert [r["predicted_sinkage_m"] for r in a.runs] == [r["predicted_sinkage_m"] for r in b.runs]
