@@ -195,7 +195,7 @@ ITEMS: tuple[ThesisItem, ...] = (
         7,
         "Sec. 7 figure (number not verified)",
         "flapped-wheel optimisation: objective map with the optimum inside the bounds",
-        "terradyn.studies.optimisation.flapped_optimisation",
+        "study flapped-optimisation",
         ("rft",),
         (_THESIS,),
     ),
@@ -214,7 +214,7 @@ ITEMS: tuple[ThesisItem, ...] = (
         "Sec. 8 formula (number not verified)",
         "the slip-onset criterion as a formula in the dimensionless groups, fitted over the "
         "sensitivity sweeps",
-        "terradyn.studies.high_speed.fit_onset_criterion",
+        "study high-speed-criterion",
         ("drft",),
         (_AGARWAL_2021, _THESIS),
     ),
