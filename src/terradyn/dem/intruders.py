@@ -1,8 +1,9 @@
 """Rigid intruders in a DEM bed: terradyn bodies as clumps of wall spheres moved at a prescribed velocity.
 
 A body's outline (:meth:`terradyn.geometry.Body.outline`, the same outline MPM resolves) is sampled
-every quarter grain diameter and extruded across the bed (slab: its whole periodic thickness; 3d: the
-body's width) with spheres of half a grain diameter, overlapping so no grain passes between them.
+every quarter grain diameter and extruded, in rows half a grain apart, across the bed (slab: its
+whole periodic thickness; 3d: the body's width) with spheres of half a grain diameter, so close
+that no grain passes between them.
 Body spheres do not interact with each other (``neigh_modify exclude``); LAMMPS's ``fix move`` moves
 them rigidly. The force on the body is the sum of the contact forces on its spheres; the torque about
 the body's reference point adds the spheres' own contact torques. The DEM body is therefore the outline
@@ -61,7 +62,7 @@ def body_spheres(
     wx = x + c * p[:, 0] + s * p[:, 1]
     wz = surface + z - s * p[:, 0] + c * p[:, 1]
     y0, y1 = y_range
-    ny = max(1, math.ceil((y1 - y0) / h))
+    ny = max(1, math.ceil((y1 - y0) / d_w))  # touching across: the gaps are far below a grain
     if periodic:
         ys = y0 + (np.arange(ny) + 0.5) * (y1 - y0) / ny
     else:
