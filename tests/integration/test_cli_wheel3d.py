@@ -126,3 +126,20 @@ def test_sweep_rft3d_matches_steady_points(run_cli):
         assert point[key] == pytest.approx(ref[key], rel=1e-12), key
     code, _, err = run_cli("wheel", "sweep", "--model", "rft", "--slip-angle", "10")
     assert code == 1 and "--slip-angle" in err
+
+
+def test_mesh_with_a_hidden_hub_is_culled_by_default(run_cli, tmp_path):
+    pytest.importorskip("trimesh")
+    from terradyn.geometry3d import save_mesh
+
+    outer = wheel_cylinder(0.0625, 0.06, circumferential_resolution=120, axial_resolution=2)
+    hub = wheel_cylinder(0.056, 0.04, circumferential_resolution=60, axial_resolution=2)
+    plain = save_mesh(outer, tmp_path / "outer.stl")
+    hubbed = save_mesh(outer.merged(hub), tmp_path / "hubbed.stl")
+    base = ("--load", "60", "--slip", "0.3", "--slip-angle", "15", "--phases", "1")
+    ref, _ = _json(run_cli, "--mesh", str(plain), *base)
+    culled, _ = _json(run_cli, "--mesh", str(hubbed), *base)
+    kept, _ = _json(run_cli, "--mesh", str(hubbed), "--no-cull", *base)
+    assert culled["culled_facet_count"] >= hub.facet_count
+    assert culled["sinkage_m"] == pytest.approx(ref["sinkage_m"], rel=1e-9)
+    assert kept["sinkage_m"] < 0.97 * ref["sinkage_m"]  # without culling the hidden hub carries load

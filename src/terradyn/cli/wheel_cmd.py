@@ -99,8 +99,9 @@ class Wheel3DOptions:
     xi = typer.Option(None, "--xi", help="3D-RFT media scale xi [N/m^3] (default: from --material).")
     slip_angle = typer.Option(0.0, "--slip-angle", help="Slip angle [deg], -90 to 90, for --model rft3d.")
     cull = typer.Option(
-        False, "--cull/--no-cull", help="Drop mesh facets the soil cannot reach (hub, inner rim)."
-    )
+        None, "--cull/--no-cull",
+        help="Drop facets the soil cannot reach (hub, inner rim), by visibility; default on with --mesh.",
+    )  # fmt: skip
 
 
 class KinematicsOptions:
@@ -206,7 +207,7 @@ def steady(
     center: str | None = Wheel3DOptions.center,
     xi: float | None = Wheel3DOptions.xi,
     slip_angle: float = Wheel3DOptions.slip_angle,
-    cull: bool = Wheel3DOptions.cull,
+    cull: bool | None = Wheel3DOptions.cull,
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = typer.Option(
@@ -222,17 +223,18 @@ def steady(
         if plot_path is not None:
             raise InputError("--plot", plot, "a plane model (--model rft)")
         angle = _slip_angle_deg(slip_angle, kin)
-        spec = _Wheel3DSpec(mesh, mesh_units, axle, center, cull)
+        culling = mesh is not None if cull is None else cull
+        spec = _Wheel3DSpec(mesh, mesh_units, axle, center, culling)
         wheel, phase_count = _wheel_3d(shape, flags, width, spec, phases)
         medium = _medium_3d(material, xi)
         with spinner("3D steady solve"):
-            rec = _steady_3d(wheel, medium, load, sinkage, kin, angle, omega, phase_count, cull)
+            rec = _steady_3d(wheel, medium, load, sinkage, kin, angle, omega, phase_count, culling)
         emit(rec, fmt, out_path)
         return
     for flag, value, default in (
         ("--mesh", mesh, None), ("--slip-angle", slip_angle, 0.0), ("--xi", xi, None),
         ("--center", center, None), ("--mesh-units", mesh_units, "m"), ("--axle", axle, "y"),
-        ("--cull", cull, False),
+        ("--cull", cull, None),
     ):  # fmt: skip
         if value != default:
             raise InputError(flag, value, "only with --model rft3d")
@@ -402,7 +404,7 @@ def sweep(
     axle: str = Wheel3DOptions.axle,
     center: str | None = Wheel3DOptions.center,
     xi: float | None = Wheel3DOptions.xi,
-    cull: bool = Wheel3DOptions.cull,
+    cull: bool | None = Wheel3DOptions.cull,
     scheduler: str = typer.Option(
         "serial", "--scheduler", help="serial, local (Dask processes) or a Dask scheduler address."
     ),
@@ -443,7 +445,7 @@ def sweep(
     if not spatial:
         for flag, value, default in (
             ("--mesh", mesh, None), ("--xi", xi, None), ("--center", center, None),
-            ("--mesh-units", mesh_units, "m"), ("--axle", axle, "y"), ("--cull", cull, False),
+            ("--mesh-units", mesh_units, "m"), ("--axle", axle, "y"), ("--cull", cull, None),
         ):  # fmt: skip
             if value != default:
                 raise InputError(flag, value, "only with --model rft3d")
@@ -475,13 +477,14 @@ def sweep(
                 )
             )
         if spatial:
-            spec = _Wheel3DSpec(mesh, mesh_units, axle, center, cull)
+            culling = mesh is not None if cull is None else cull
+            spec = _Wheel3DSpec(mesh, mesh_units, axle, center, culling)
             wheel, phase_count = _wheel_3d(shape, flags, width, spec, phases)
             media_3d = [_medium_3d(m, None) for m in material_names] if xi is None else [_medium_3d("", xi)]
-            if cull:
+            if culling:
                 from ..locomotion.steady3d import wheel_contact_mesh
 
-                wheel = wheel_contact_mesh(wheel, slip_angle=math.radians(max(angles, key=abs)))
+                wheel = wheel_contact_mesh(wheel, slip_angle=[math.radians(a) for a in angles])
             tables.append(
                 force_slip_sweep_3d(
                     wheel,

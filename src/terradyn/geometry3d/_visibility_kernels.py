@@ -1,4 +1,4 @@
-"""Numba kernel of :func:`terradyn.geometry3d.visibility.visible_facets` (ray casting on a 2D grid)."""
+"""Numba kernel of :func:`terradyn.geometry3d.visibility.visible_facets` (rays walked over voxels)."""
 
 from __future__ import annotations
 
@@ -10,36 +10,61 @@ import numpy as np
 from .visibility import _EDGE
 
 
-@numba.njit(cache=True)
-def _basis(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two unit vectors orthogonal to the unit vector d and to each other."""
-    a = np.array([1.0, 0.0, 0.0]) if abs(d[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    e1 = a - (a[0] * d[0] + a[1] * d[1] + a[2] * d[2]) * d
-    e1 /= math.sqrt(e1[0] ** 2 + e1[1] ** 2 + e1[2] ** 2)
-    e2 = np.array([d[1] * e1[2] - d[2] * e1[1], d[2] * e1[0] - d[0] * e1[2], d[0] * e1[1] - d[1] * e1[0]])
-    return e1, e2
-
-
-@numba.njit(cache=True)
-def _hits(o: np.ndarray, d: np.ndarray, v0: np.ndarray, v1: np.ndarray, v2: np.ndarray, tmin: float) -> bool:
-    """Moller-Trumbore: does the ray o + t d (t > tmin) cross the triangle (v0, v1, v2), edges included?"""
-    e1 = v1 - v0
-    e2 = v2 - v0
-    p = np.array([d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2], d[0] * e2[1] - d[1] * e2[0]])
-    det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2]
+@numba.njit(cache=True, inline="always")
+def _hits(
+    ox: float, oy: float, oz: float, dx: float, dy: float, dz: float, vertices: np.ndarray, face: np.ndarray
+) -> bool:
+    """Moller-Trumbore: does the ray o + t d (t > 0) cross the triangle ``face``, edges included?"""
+    a, b, c = face[0], face[1], face[2]
+    x0, y0, z0 = vertices[a, 0], vertices[a, 1], vertices[a, 2]
+    e1x, e1y, e1z = vertices[b, 0] - x0, vertices[b, 1] - y0, vertices[b, 2] - z0
+    e2x, e2y, e2z = vertices[c, 0] - x0, vertices[c, 1] - y0, vertices[c, 2] - z0
+    px, py, pz = dy * e2z - dz * e2y, dz * e2x - dx * e2z, dx * e2y - dy * e2x
+    det = e1x * px + e1y * py + e1z * pz
     if det == 0.0:
         return False
     inv = 1.0 / det
-    s = o - v0
-    u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) * inv
+    sx, sy, sz = ox - x0, oy - y0, oz - z0
+    u = (sx * px + sy * py + sz * pz) * inv
     if u < -_EDGE or u > 1.0 + _EDGE:
         return False
-    q = np.array([s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]])
-    w = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) * inv
+    qx, qy, qz = sy * e1z - sz * e1y, sz * e1x - sx * e1z, sx * e1y - sy * e1x
+    w = (dx * qx + dy * qy + dz * qz) * inv
     if w < -_EDGE or u + w > 1.0 + _EDGE:
         return False
-    t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) * inv
-    return t > tmin
+    return (e2x * qx + e2y * qy + e2z * qz) * inv > 0.0
+
+
+@numba.njit(cache=True)
+def _voxel_bins(
+    vertices: np.ndarray, faces: np.ndarray, lo: np.ndarray, h: float, n: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """CSR lists (start (N + 1,), members) of the facets whose bounding box touches each voxel."""
+    nf = faces.shape[0]
+    box = np.empty((nf, 6), dtype=np.int64)
+    count = np.zeros(n[0] * n[1] * n[2] + 1, dtype=np.int64)
+    for j in range(nf):
+        for ax in range(3):
+            a = vertices[faces[j, 0], ax]
+            b = vertices[faces[j, 1], ax]
+            c = vertices[faces[j, 2], ax]
+            box[j, ax] = min(n[ax] - 1, max(0, int((min(a, b, c) - lo[ax]) / h)))
+            box[j, 3 + ax] = min(n[ax] - 1, max(0, int((max(a, b, c) - lo[ax]) / h)))
+        for x in range(box[j, 0], box[j, 3] + 1):
+            for y in range(box[j, 1], box[j, 4] + 1):
+                for z in range(box[j, 2], box[j, 5] + 1):
+                    count[(x * n[1] + y) * n[2] + z + 1] += 1
+    start = np.cumsum(count)
+    fill = start[:-1].copy()
+    members = np.empty(start[-1], dtype=np.int64)
+    for j in range(nf):
+        for x in range(box[j, 0], box[j, 3] + 1):
+            for y in range(box[j, 1], box[j, 4] + 1):
+                for z in range(box[j, 2], box[j, 5] + 1):
+                    v = (x * n[1] + y) * n[2] + z
+                    members[fill[v]] = j
+                    fill[v] += 1
+    return start, members
 
 
 @numba.njit(cache=True)
@@ -56,68 +81,99 @@ def visible_facets_kernel(
 
     vertices (V, 3) [m]; faces (F, 3); centroids, normals (F, 3); directions unit (D, 3). A facet is
     tested along d only when n . d > ``facing``; the ray starts ``offset`` [m] off the facet along n and
-    is blocked by any other facet it crosses. Per direction the facets are binned by their projection
-    on the plane across d (a uniform grid of about F cells), so each ray tests only its cell.
+    is blocked by any other facet it crosses. The facets are binned once on a uniform voxel grid (about
+    2 F voxels) and each ray walks the voxels it crosses (Amanatides and Woo 1987), testing only their
+    facets; a direction no untested facet faces is skipped.
     """
     nf = faces.shape[0]
     out = np.zeros(nf, dtype=np.bool_)
-    cells = max(1, int(math.sqrt(nf)))
+    lo = np.empty(3)
+    ext = np.empty(3)
+    for ax in range(3):
+        lo[ax] = vertices[:, ax].min()
+        ext[ax] = vertices[:, ax].max() - lo[ax]
+    span = max(ext.max(), 1e-300)
+    for ax in range(3):
+        ext[ax] = max(ext[ax], 1e-3 * span)
+        lo[ax] -= 1e-6 * span
+        ext[ax] += 2e-6 * span
+    h = (ext[0] * ext[1] * ext[2] / (2.0 * nf)) ** (1.0 / 3.0)
+    h = max(h, span / 512.0)
+    n = np.empty(3, dtype=np.int64)
+    for ax in range(3):
+        n[ax] = max(1, math.ceil(ext[ax] / h))
+    start, members = _voxel_bins(vertices, faces, lo, h, n)
+    blocker = np.full(nf, -1, dtype=np.int64)  # the facet that last blocked each ray: tried first
     for k in range(directions.shape[0]):
-        d = directions[k]
-        e1, e2 = _basis(d)
-        nv = vertices.shape[0]
-        pu = np.empty(nv)
-        pw = np.empty(nv)
-        for j in range(nv):
-            x, y, z = vertices[j, 0], vertices[j, 1], vertices[j, 2]
-            pu[j] = x * e1[0] + y * e1[1] + z * e1[2]
-            pw[j] = x * e2[0] + y * e2[1] + z * e2[2]
-        u0, u1, w0, w1 = pu.min(), pu.max(), pw.min(), pw.max()
-        hu = max((u1 - u0) / cells, 1e-300)
-        hw = max((w1 - w0) / cells, 1e-300)
-        lo_u = np.empty(nf, dtype=np.int64)
-        hi_u = np.empty(nf, dtype=np.int64)
-        lo_w = np.empty(nf, dtype=np.int64)
-        hi_w = np.empty(nf, dtype=np.int64)
-        count = np.zeros(cells * cells + 1, dtype=np.int64)
-        for j in range(nf):
-            a, b, c = faces[j, 0], faces[j, 1], faces[j, 2]
-            lo_u[j] = min(cells - 1, int((min(pu[a], pu[b], pu[c]) - u0) / hu))
-            hi_u[j] = min(cells - 1, int((max(pu[a], pu[b], pu[c]) - u0) / hu))
-            lo_w[j] = min(cells - 1, int((min(pw[a], pw[b], pw[c]) - w0) / hw))
-            hi_w[j] = min(cells - 1, int((max(pw[a], pw[b], pw[c]) - w0) / hw))
-            for iu in range(lo_u[j], hi_u[j] + 1):
-                for iw in range(lo_w[j], hi_w[j] + 1):
-                    count[iu * cells + iw + 1] += 1
-        start = np.cumsum(count)
-        fill = start[:-1].copy()
-        members = np.empty(start[-1], dtype=np.int64)
-        for j in range(nf):
-            for iu in range(lo_u[j], hi_u[j] + 1):
-                for iw in range(lo_w[j], hi_w[j] + 1):
-                    cell = iu * cells + iw
-                    members[fill[cell]] = j
-                    fill[cell] += 1
+        dx, dy, dz = directions[k, 0], directions[k, 1], directions[k, 2]
         for i in range(nf):
-            if out[i]:
+            if out[i] or normals[i, 0] * dx + normals[i, 1] * dy + normals[i, 2] * dz <= facing:
                 continue
-            n = normals[i]
-            if n[0] * d[0] + n[1] * d[1] + n[2] * d[2] <= facing:
-                continue
-            o = centroids[i] + offset * n
-            ou = o[0] * e1[0] + o[1] * e1[1] + o[2] * e1[2]
-            ow = o[0] * e2[0] + o[1] * e2[1] + o[2] * e2[2]
-            iu = min(cells - 1, max(0, int((ou - u0) / hu)))
-            iw = min(cells - 1, max(0, int((ow - w0) / hw)))
-            cell = iu * cells + iw
-            blocked = False
-            for m in range(start[cell], start[cell + 1]):
-                j = members[m]
-                if j == i:
-                    continue
-                if _hits(o, d, vertices[faces[j, 0]], vertices[faces[j, 1]], vertices[faces[j, 2]], 0.0):
-                    blocked = True
-                    break
+            ox = centroids[i, 0] + offset * normals[i, 0]
+            oy = centroids[i, 1] + offset * normals[i, 1]
+            oz = centroids[i, 2] + offset * normals[i, 2]
+            last = blocker[i]
+            if last >= 0 and _hits(ox, oy, oz, dx, dy, dz, vertices, faces[last]):
+                continue  # nearby directions are usually blocked by the same facet
+            blocked = _march(ox, oy, oz, dx, dy, dz, i, vertices, faces, lo, h, n, start, members, blocker)
             if not blocked:
                 out[i] = True
     return out
+
+
+@numba.njit(cache=True)
+def _march(
+    ox: float,
+    oy: float,
+    oz: float,
+    dx: float,
+    dy: float,
+    dz: float,
+    i: int,
+    vertices: np.ndarray,
+    faces: np.ndarray,
+    lo: np.ndarray,
+    h: float,
+    n: np.ndarray,
+    start: np.ndarray,
+    members: np.ndarray,
+    blocker: np.ndarray,
+) -> bool:
+    """Walk the voxels the ray from facet i crosses; True (and the blocker recorded) at the first hit."""
+    o = (ox, oy, oz)
+    d = (dx, dy, dz)
+    cell = np.empty(3, dtype=np.int64)
+    step = np.empty(3, dtype=np.int64)
+    t_next = np.empty(3)
+    t_delta = np.empty(3)
+    for ax in range(3):
+        c = math.floor((o[ax] - lo[ax]) / h)
+        cell[ax] = min(n[ax] - 1, max(0, c))
+        if d[ax] > 0.0:
+            step[ax] = 1
+            t_next[ax] = (lo[ax] + (cell[ax] + 1) * h - o[ax]) / d[ax]
+            t_delta[ax] = h / d[ax]
+        elif d[ax] < 0.0:
+            step[ax] = -1
+            t_next[ax] = (lo[ax] + cell[ax] * h - o[ax]) / d[ax]
+            t_delta[ax] = -h / d[ax]
+        else:
+            step[ax] = 0
+            t_next[ax] = np.inf
+            t_delta[ax] = np.inf
+    while True:
+        v = (cell[0] * n[1] + cell[1]) * n[2] + cell[2]
+        for m in range(start[v], start[v + 1]):
+            j = members[m]
+            if j != i and _hits(ox, oy, oz, dx, dy, dz, vertices, faces[j]):
+                blocker[i] = j
+                return True
+        ax = 0
+        if t_next[1] < t_next[ax]:
+            ax = 1
+        if t_next[2] < t_next[ax]:
+            ax = 2
+        cell[ax] += step[ax]
+        if cell[ax] < 0 or cell[ax] >= n[ax]:
+            return False
+        t_next[ax] += t_delta[ax]

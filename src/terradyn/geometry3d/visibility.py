@@ -9,8 +9,8 @@ are the caller's (for a wheel: the directions of motion and penetration it meets
 :func:`terradyn.locomotion.steady3d.wheel_contact_mesh`); no facet is dropped by a rule about its
 position.
 
-The compiled kernel bins the facets on a grid across each direction; :func:`_visible_facets_reference`
-is the brute-force NumPy version the tests compare with.
+The compiled kernel bins the facets once on a voxel grid and walks each ray through the voxels it
+crosses; :func:`_visible_facets_reference` is the brute-force NumPy version the tests compare with.
 """
 
 from __future__ import annotations

@@ -324,9 +324,12 @@ def wheel_contact_directions(slip_angle: float = 0.0, *, count: int = 24) -> NDA
     return np.vstack(rows)
 
 
-def wheel_contact_mesh(mesh: TriangleMesh, *, slip_angle: float = 0.0, count: int = 24) -> TriangleMesh:
+def wheel_contact_mesh(
+    mesh: TriangleMesh, *, slip_angle: float | Sequence[float] = 0.0, count: int = 24
+) -> TriangleMesh:
     """The facets of a wheel the medium can reach: those visible from outside along
-    :func:`wheel_contact_directions` (:func:`terradyn.geometry3d.visibility.visible_facets`).
+    :func:`wheel_contact_directions` (:func:`terradyn.geometry3d.visibility.visible_facets`) of the
+    slip angle [rad], or of every one of several slip angles (for a sweep).
 
     Drops enclosed faces (a hub inside a closed tyre, inner rim surfaces); keeps every facet of a closed
     convex wheel that faces one of the directions, so there the RFT answer is unchanged. Raises
@@ -335,7 +338,12 @@ def wheel_contact_mesh(mesh: TriangleMesh, *, slip_angle: float = 0.0, count: in
     from ..geometry3d.visibility import visible_facets
 
     _check_mesh(mesh)
-    keep = visible_facets(mesh, wheel_contact_directions(slip_angle, count=count))
+    angles = np.atleast_1d(np.asarray(slip_angle, dtype=np.float64))
+    signs = sorted({float(np.sign(a)) for a in angles})  # the directions depend on the sign only
+    directions = np.vstack([wheel_contact_directions(0.1 * sg, count=count) for sg in signs])
+    for a in angles:
+        _slip_angle(float(a))
+    keep = visible_facets(mesh, directions)
     if not np.any(keep):
         raise InputError("mesh", "no facet visible from outside", "a wheel surface the medium can reach")
     return TriangleMesh(mesh.vertices, mesh.faces[keep])
