@@ -9,14 +9,20 @@ surface is horizontal at ``surface_level``. 3D RFT is isotropic about the vertic
 built from the direction of motion), so where the wheel heads in the world does not change anything
 reported in the wheel frame.
 
-* Spin omega > 0 about +y rolls the wheel forward. The longitudinal slip is
-  ``s = 1 - V_x / (omega r)`` with V_x the axle speed along the heading and r the nominal radius
-  (default: the largest distance of a vertex from the axle in the body x-z plane), so
-  ``V_x = (1 - s) omega r``.
+* Spin omega >= 0 about +y rolls the wheel forward. The longitudinal slip relates the rim speed
+  omega r to V_x, the axle speed along the heading (r the nominal radius, default the largest
+  distance of a vertex from the axle in the body x-z plane): classic ``s = 1 - V_x / (omega r)``, or
+  bounded ``s = (omega r - V_x) / max(omega r, V_x)`` (-1: a locked wheel), see
+  :class:`terradyn.kinematics.SlipDefinition`. The motion is given by a slip, or by the rim and
+  carriage speeds (:func:`wheel_kinematics_3d`).
 * Slip angle (ISO 8855 sign): ``slip_angle = (direction of the axle velocity) - (heading)``, measured
-  counter-clockwise seen from above (about +z). A positive slip angle means the wheel moves towards
-  its left, with lateral velocity ``V_y = V_x tan(slip_angle)``. Under this sign the soil's lateral
-  force on a plain wheel opposes V_y, i.e. it is negative for a positive slip angle.
+  counter-clockwise seen from above (about +z), in [-90, 90] deg. A positive slip angle means the
+  wheel moves towards its left: with a slip ``V_y = V_x tan(slip_angle)``, with a carriage speed V
+  ``(V_x, V_y) = V (cos, sin)(slip_angle)``; 90 deg (sideways) needs the speeds. Under this sign the
+  soil's lateral force on a plain wheel opposes V_y, i.e. it is negative for a positive slip angle.
+* Load control (:func:`wheel_steady_3d`) or a prescribed sinkage (:func:`wheel_at_sinkage_3d`).
+* Facets the medium cannot reach (a hub inside a closed tyre) are dropped by
+  :func:`wheel_contact_mesh` (visibility from outside along the motion and penetration directions).
 * Outputs are soil forces and moments on the wheel, moments about the axle centre, in the wheel
   frame: drawbar pull = F_x (+ forward), side force = F_y (+ left), vertical force = F_z,
   drive torque = -M_y (the motor torque, + driving forward), overturning moment = M_x (about the
