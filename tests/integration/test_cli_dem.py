@@ -142,3 +142,18 @@ def test_calibrate_from_dem_bad_input(run_cli, args, needle):
     code, _, err = run_cli("calibrate", "rft", "--length", "0.01", "--width", "0.01", *args)
     assert code == 1, err
     assert needle in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        (["--load", "1", "--duration", "0.1", "--shape", "blob"], "--shape"),
+        (["--load", "1", "--duration", "0"], "--duration"),
+        (["--load", "1", "--duration", "0.1", "--packing", "tight"], "--packing"),
+        (["--load", "1", "--duration", "0.1", "--bed", "2d"], "--bed"),
+    ],
+)
+def test_dem_wheel_bad_input_is_one_line(run_cli, args, needle):
+    code, _, err = run_cli("dem", "wheel", *args)
+    assert code == 1, err
+    assert needle in err and len(err.strip().splitlines()) == 1
