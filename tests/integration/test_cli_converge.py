@@ -13,7 +13,9 @@ def test_converge_intrude_reports_runs_and_estimates(run_cli, tmp_path, monkeypa
 
     calls = []
 
-    def fake_run(body, material, *, cell_size, **kw):
+    def fake_run(body, material, *, resolution, bed, **kw):
+        assert bed == mpm.Bed() and resolution.particles_per_cell == 2
+        cell_size = resolution.cell_size
         calls.append(cell_size)
         return SimpleNamespace(summary={"force_z_N": 20.0 + 500.0 * cell_size, "force_x_N": 0.0,
                                         "torque_y_Nm": 0.0})  # fmt: skip

@@ -293,7 +293,7 @@ def test_input_differences_names_nested_inputs_and_hides_derived_ones():
 
 def test_default_checkpoint_interval_loses_at_most_a_minute():
     for fn in (run_intrusion, run_wheel):
-        assert inspect.signature(fn).parameters["checkpoint_interval"].default == 60.0
+        assert inspect.signature(fn).parameters["outputs"].default.checkpoint_interval == 60.0
 
 
 TERRAIN = dict(bed_width=0.2, bed_depth=0.1, cell_size=0.01, max_speed=0.1, settle_time=0.0)

@@ -41,7 +41,9 @@ def test_intercept_of_the_embedment_line_gives_n_gamma(base):
     assert res.N_gamma_raw > res.N_gamma_mpm  # the embedment term is not bearing capacity
     assert calls["friction_coefficient"] == pytest.approx(math.sin(math.radians(30.0)))
     assert calls["surface_friction"] == (0.0 if base == "smooth" else 2.0)
-    assert calls["cell_size"] == pytest.approx(0.04 / 20)
+    assert calls["resolution"].cell_size == pytest.approx(0.04 / 20)
+    assert calls["stroke"].averaging_window == pytest.approx(0.2 * 0.1 * 0.04)
+    assert calls["outputs"].record_spacing == pytest.approx(min(0.25 * 0.04 / 20, 0.02 * 0.1 * 0.04))
     rec = res.record()
     assert {"N_gamma_mpm", "N_gamma_reference", "reference"} <= set(rec)
 

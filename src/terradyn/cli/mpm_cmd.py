@@ -13,6 +13,7 @@ import typer
 
 from .. import materials
 from ..errors import InputError, check_finite
+from ..mpm.specs import Bed, Drive, Outputs, Resolution
 from ._bodies import BODY_SIZE_FLAGS, BodyKind, BodyOptions, build_body
 from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure
 from .options import (
@@ -111,6 +112,18 @@ class _Outputs:
             if not 2 <= frames <= 500:
                 raise InputError("--frames", frames, "an integer in [2, 500]")
             self.frames = frames
+
+    def spec(self, checkpoint_interval: float, resume: bool, progress: Any, **intervals: Any) -> Outputs:
+        """The library's :class:`~terradyn.mpm.Outputs` for these paths."""
+        return Outputs(
+            snapshot_dir=self.snapshots,
+            checkpoint_path=self.checkpoint,
+            checkpoint_interval=checkpoint_interval,
+            resume=resume,
+            progress=progress,
+            frame_count=self.frames,
+            **intervals,
+        )
 
 
 @contextmanager
@@ -233,8 +246,12 @@ def intrude(
     speed = check_finite("--speed", speed)
     if not speed > 0:
         raise InputError("--speed", speed, "a speed > 0 [m/s]")
-    record_spacing = _spacing("--record-interval", record_interval, speed)
-    snapshot_spacing = _spacing("--snapshot-interval", snapshot_interval, speed)
+    bed = Bed(packing=packing, walls=walls)
+    resolution = Resolution(cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact)
+    intervals = {
+        "record_interval": _interval("--record-interval", record_interval),
+        "snapshot_interval": _interval("--snapshot-interval", snapshot_interval),
+    }
     with _interruptible(outs), fraction_progress("MPM intrusion", "s") as bar:
         res = run_intrusion(
             shape,
@@ -243,31 +260,15 @@ def intrude(
             direction=math.radians(check_finite("--direction", direction)),
             angle=math.radians(check_finite("--angle", angle)),
             speed=speed,
-            cell_size=cell_size,
-            particles_per_cell=particles_per_cell,
-            packing=packing,
-            walls=walls,
-            contact=contact,
-            checkpoint_path=outs.checkpoint,
-            checkpoint_interval=checkpoint_interval,
-            resume=resume,
-            record_spacing=record_spacing,
-            snapshot_spacing=snapshot_spacing,
-            snapshot_dir=outs.snapshots,
-            progress=bar,
-            frame_count=outs.frames,
+            bed=bed,
+            resolution=resolution,
+            outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
         )
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)
     if outs.plot is not None:
         _plot_series(res, outs.plot, "intrusion")
     emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, outs.out)
-
-
-def _spacing(flag: str, interval: float | None, speed: float) -> float | None:
-    """Travel [m] of the body in ``interval`` simulated seconds."""
-    interval = _interval(flag, interval)
-    return None if interval is None else interval * speed
 
 
 #: the longest output interval accepted [s] of simulated time (MPM runs are seconds long)
@@ -352,6 +353,10 @@ def wheel(
     body = _mpm_wheel(shape, width, sizes)
     outs = _Outputs(out=out, plot=plot, series=series, fields=fields, animate=animate, frames=frames,
                     snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip
+    intervals = {
+        "record_interval": _interval("--record-interval", record_interval, duration),
+        "snapshot_interval": _interval("--snapshot-interval", snapshot_interval, duration),
+    }
     with _interruptible(outs), fraction_progress("MPM wheel", "s") as bar:
         res = run_wheel(
             body,
@@ -362,20 +367,12 @@ def wheel(
             drive_torque=drive_torque,
             max_omega=max_omega,
             drawbar_load=drawbar_load,
-            duration=duration,
-            cell_size=cell_size,
-            particles_per_cell=particles_per_cell,
-            packing=packing,
-            walls=walls,
-            contact=contact,
-            checkpoint_path=outs.checkpoint,
-            checkpoint_interval=checkpoint_interval,
-            resume=resume,
-            record_interval=_interval("--record-interval", record_interval, duration),
-            snapshot_interval=_interval("--snapshot-interval", snapshot_interval, duration),
-            snapshot_dir=outs.snapshots,
-            progress=bar,
-            frame_count=outs.frames,
+            bed=Bed(packing=packing, walls=walls),
+            resolution=Resolution(
+                cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact
+            ),
+            outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
+            drive=Drive(duration=duration),
         )
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)
@@ -477,9 +474,8 @@ def converge_intrude(
             direction=math.radians(check_finite("--direction", direction)),
             angle=math.radians(check_finite("--angle", angle)),
             speed=speed,
-            particles_per_cell=particles_per_cell,
-            packing=packing,
-            walls=walls,
+            bed=Bed(packing=packing, walls=walls),
+            resolution=Resolution(particles_per_cell=particles_per_cell),
         )
     _emit_convergence(res, fmt, out_path, plot_path, f"MPM {body.value} intrusion")
 
@@ -517,9 +513,9 @@ def converge_wheel_cmd(
             load=load,
             omega=omega,
             slip=slip,
-            duration=duration,
-            particles_per_cell=particles_per_cell,
-            packing=packing,
+            bed=Bed(packing=packing),
+            resolution=Resolution(particles_per_cell=particles_per_cell),
+            drive=Drive(duration=duration),
         )
     _emit_convergence(res, fmt, out_path, plot_path, "MPM wheel")
 

@@ -5,7 +5,9 @@ optional mu(I) rate dependence, stress-free below the critical density) on an ex
 (APIC transfer, quadratic B-splines) with rigid bodies in frictional contact. Entry points:
 :func:`run_intrusion` and :func:`run_wheel`, and :class:`MPMTerrain`, the stateful terrain model
 (``init``/``step``) for driving a body from your own code; :class:`GranularModel` maps a material
-(mu = sin(phi)).
+(mu = sin(phi)). Their settings come as frozen specs shared by every case (:mod:`terradyn.mpm.specs`):
+:class:`Bed`, :class:`Resolution`, :class:`Outputs`, and the run length, :class:`Stroke` (intrusions)
+or :class:`Drive` (wheels).
 
 Modelling choices to know when using it:
 
@@ -27,12 +29,17 @@ from importlib import import_module
 from typing import Any
 
 __all__ = [
+    "Bed",
     "BedGrid",
     "BedPacking",
+    "Drive",
     "GranularModel",
     "IntrusionResult",
     "MPMInstabilityError",
     "MPMTerrain",
+    "Outputs",
+    "Resolution",
+    "Stroke",
     "Wall",
     "WallKind",
     "Walls",
@@ -55,6 +62,11 @@ _WHERE = {
     "bed_stability_ratio": "model",
     "friction_coefficient_from_angle": "model",
     "MPMTerrain": "terrain",
+    "Bed": "specs",
+    "Drive": "specs",
+    "Outputs": "specs",
+    "Resolution": "specs",
+    "Stroke": "specs",
     "IntrusionResult": "runs",
     "WheelResult": "runs",
     "run_intrusion": "runs",

@@ -10,8 +10,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -21,7 +20,8 @@ from ..materials import Material
 from .bodies import BodyState, ContactScheme, body_segments, effective_body, lowest_point
 from .checkpoint import plain
 from .model import BedPacking, GranularModel, Walls, default_settle_time, resolve_model
-from .solver import BedGrid, Phase, ProgressCallback, Runner, make_bed, stable_time_step
+from .solver import BedGrid, ParticleState, Phase, Runner, make_bed, stable_time_step
+from .specs import Bed, Drive, Outputs, Resolution, Stroke, apply_legacy
 
 __all__ = ["IntrusionResult", "WheelResult", "run_intrusion", "run_wheel"]
 
@@ -62,68 +62,59 @@ class WheelResult(_MPMResult):
 
 @dataclass(frozen=True)
 class _Common:
-    """Validated settings shared by the run functions."""
+    """The specs of a run after checking them against the body, with the model they resolve to."""
 
     model: GranularModel
     cell_size: float
-    cfl: float
-    gravity: float
-    packing: BedPacking
-    bed_density: float | None
-    particles_per_cell: int
-    walls: Walls
-    contact: ContactScheme
+    bed: Bed
+    resolution: Resolution
+
+    @property
+    def contact(self) -> ContactScheme:
+        return cast(ContactScheme, self.resolution.contact)  # coerced by Resolution
+
+    @property
+    def packing(self) -> BedPacking:
+        return cast(BedPacking, self.bed.packing)  # coerced by Bed
+
+    @property
+    def walls(self) -> Walls:
+        return cast(Walls, self.bed.walls)  # coerced by Bed
+
+    @property
+    def gravity(self) -> float:
+        return self.bed.gravity
 
 
 def _common(
-    body,
-    material,
-    cell_size,
-    cfl,
-    gravity,
-    packing,
-    bed_density,
-    particles_per_cell,
-    walls,
-    min_cells_across,
-    overrides,
-    contact=ContactScheme.TWO_FIELD,
+    body: Body, material: Any, bed: Bed, resolution: Resolution, overrides: dict[str, Any], min_cells: int
 ) -> tuple[_Common, Body]:
+    """Resolve the model, the cell size (default rule: body diameter / 16) and the MPM body."""
     model = resolve_model(material, **overrides)
-    scheme = ContactScheme.coerce(contact)
     if not isinstance(body, Body):
         raise InputError("body", body, "a terradyn.geometry Body")
     diameter = 2.0 * body.bounding_radius
-    if cell_size is None:
-        cell_size = diameter / 16.0
+    cell_size = diameter / 16.0 if resolution.cell_size is None else resolution.cell_size
     check_positive("cell_size", cell_size)
-    if int(min_cells_across) < 2:
-        raise InputError("min_cells_across", min_cells_across, "an integer >= 2")
-    if diameter / cell_size < min_cells_across:
+    n_min = min_cells if resolution.min_cells_across is None else resolution.min_cells_across
+    if diameter / cell_size < n_min:
         raise InputError(
             "cell_size",
             cell_size,
-            f"at most {diameter / min_cells_across:.4g} m",
-            f"put at least {min_cells_across} cells across the body (size {diameter:.4g} m)",
+            f"at most {diameter / n_min:.4g} m",
+            f"put at least {n_min} cells across the body (size {diameter:.4g} m)",
         )
-    check_range("gravity", gravity, 0.01, 100.0, unit="m/s^2")
-    check_range("cfl", cfl, 1e-3, 0.5, hint="explicit MPM is stable for cfl <= 0.5")
-    try:
-        packing = BedPacking(packing)
-    except ValueError:
-        raise InputError("packing", packing, "'consolidated' or 'unconsolidated'") from None
-    common = _Common(
-        model,
-        float(cell_size),
-        float(cfl),
-        float(gravity),
-        packing,
-        bed_density,
-        int(particles_per_cell),
-        Walls.coerce(walls),
-        scheme,
-    )
-    return common, effective_body(body, float(cell_size), scheme)
+    common = _Common(model, float(cell_size), bed, resolution)
+    return common, effective_body(body, float(cell_size), common.contact)
+
+
+def _specs(function: str, legacy: dict[str, Any], exclude: str, **specs: Any) -> tuple[dict, dict]:
+    """The specs with the flat keywords folded in (one table, :data:`terradyn.mpm.specs.LEGACY`)."""
+    kinds = {"bed": Bed, "resolution": Resolution, "outputs": Outputs, "stroke": Stroke, "drive": Drive}
+    for name, spec in specs.items():
+        if not isinstance(spec, kinds[name]):
+            raise InputError(name, spec, f"a terradyn.mpm.{kinds[name].__name__}")
+    return apply_legacy(function, legacy, specs, exclude=frozenset({exclude}))
 
 
 def _run_inputs(c: _Common, body: Body, named: dict[str, Any]) -> dict[str, Any]:
@@ -136,11 +127,11 @@ def _run_inputs(c: _Common, body: Body, named: dict[str, Any]) -> dict[str, Any]
         "body": body,
         "model": c.model,
         "cell_size": c.cell_size,
-        "cfl": c.cfl,
-        "gravity": c.gravity,
+        "cfl": c.resolution.cfl,
+        "gravity": c.bed.gravity,
         "packing": c.packing,
-        "bed_density": c.bed_density,
-        "particles_per_cell": c.particles_per_cell,
+        "bed_density": c.bed.density,
+        "particles_per_cell": c.resolution.particles_per_cell,
         "walls": c.walls,
         "contact": c.contact.value,
     }
@@ -163,26 +154,49 @@ def _derived_inputs(runner: Runner, eff: Body) -> dict[str, Any]:
     }
 
 
-def _settle_time(c: _Common, depth: float, settle_time: float | None) -> float:
-    if settle_time is None:
-        settle_time = default_settle_time(c.model, depth, c.packing, c.gravity)
-    return check_positive("settle_time", settle_time, allow_zero=True)
-
-
-def _settle_phases(c: _Common, depth: float, settle_time: float, dt: float) -> list[Phase]:
-    """Damped settling of the bed under gravity (the body waits above the surface)."""
+def _settle_phases(c: _Common, depth: float, dt: float) -> tuple[list[Phase], float]:
+    """Damped settling of the bed under gravity (the body waits above the surface), and its time."""
+    settle = settle_time(c.model, c.bed, depth)
     wave = c.model.wave_speed()
-    n = max(1, round(settle_time / dt))
-    return [Phase("settle", n, damping=wave / depth, twist=(0.0, 0.0, 0.0), free=(False, False))]
+    n = max(1, round(settle / dt))
+    return [Phase("settle", n, damping=wave / depth, twist=(0.0, 0.0, 0.0), free=(False, False))], settle
+
+
+def settle_time(model: GranularModel, bed: Bed, depth: float) -> float:
+    """The bed's settling time [s]: ``bed.settle_time`` or the default for a bed ``depth`` [m] deep."""
+    if bed.settle_time is not None:
+        return float(bed.settle_time)
+    return default_settle_time(model, depth, BedPacking(bed.packing), bed.gravity)
 
 
 def _frame_every(frame_count: int, motion_steps: int, record_every: int) -> int:
     """Recorded rows between animation frames so that the motion phase gives about ``frame_count``."""
-    if not (isinstance(frame_count, int | np.integer) and 0 <= frame_count <= 2000):
-        raise InputError("frame_count", frame_count, "an integer in [0, 2000]")
     if frame_count == 0:
         return 0
     return max(1, round(motion_steps / record_every / frame_count))
+
+
+def _output_every(outputs: Outputs, dt: float, speed: float | None, default_row: float, default_snap: float):
+    """``(record_every, snapshot_every)`` in steps and rows. Intervals are simulated time [s]; with a
+    ``speed`` [m/s] (an intrusion) spacings [m] of travel are taken too, and the defaults are spacings."""
+    o = outputs
+    if speed is None:
+        for name in ("record_spacing", "snapshot_spacing"):
+            if getattr(o, name) is not None:
+                interval = name.replace("spacing", "interval")
+                raise InputError(name, getattr(o, name), f"None for a wheel run: give {interval} [s]")
+        row = default_row if o.record_interval is None else o.record_interval
+        record_every = max(1, round(row / dt))
+        snap = default_snap if o.snapshot_interval is None else o.snapshot_interval
+        snap_every = max(1, round(snap / (record_every * dt)))
+    else:
+        given = o.record_spacing if o.record_interval is None else o.record_interval * speed
+        row = default_row if given is None else given
+        record_every = max(1, round(row / speed / dt))
+        given = o.snapshot_spacing if o.snapshot_interval is None else o.snapshot_interval * speed
+        snap = default_snap if given is None else given
+        snap_every = max(1, round(snap / (record_every * dt * speed)))
+    return record_every, snap_every if o.snapshot_dir is not None else 0
 
 
 def _execute(runner: Runner, resume: bool, eff: Body) -> float:
@@ -235,7 +249,7 @@ def _series(runner: Runner, width: float, skip_phases: int) -> dict[str, np.ndar
     return out
 
 
-def _intrusion_bed(seg, c: _Common, depth, window, direction, angle, bed_depth, bed_width):
+def _intrusion_bed(seg, c: _Common, depth, window, direction, angle):
     """Bed and start pose for an intrusion: returns ``(grid, start pose (3,), travel [m])``.
 
     The body starts with its lowest point half a cell above the surface and moves along
@@ -252,6 +266,7 @@ def _intrusion_bed(seg, c: _Common, depth, window, direction, angle, bed_depth, 
     # and grow with depth); closer walls give the mechanism a frictionless slip surface.
     side = max(6.0 * reach, 2.5 * depth, 4.0 * h)
     below = max(4.0 * reach, 1.5 * depth, 4.0 * h)
+    bed_depth, bed_width = c.bed.depth, c.bed.width
     bed_depth = depth + 0.5 * window + reach + below if bed_depth is None else bed_depth
     x_path = sorted([-x_at_depth, -x_at_depth + travel * cos_d])
     if bed_width is None:
@@ -271,22 +286,26 @@ def _intrusion_bed(seg, c: _Common, depth, window, direction, angle, bed_depth, 
     return grid, np.array([-x_at_depth, z_start, angle]), travel
 
 
-def _runner(c: _Common, grid, state, dt, phases, record_every, reference_speed, io, key) -> Runner:
-    """A :class:`Runner` with the bed made from ``c``; ``io`` = (snapshot_dir, snapshot_every,
-    checkpoint_path, checkpoint_interval, progress); ``key`` = inputs that identify the run."""
-    snap, snap_every, ckpt, interval, progress = io
-    particles = make_bed(
-        c.model,
+def bed_particles(model: GranularModel, grid: BedGrid, bed: Bed, resolution: Resolution) -> ParticleState:
+    """A fresh (unsettled) bed of ``model`` filling ``grid`` as ``bed`` and ``resolution`` say."""
+    return make_bed(
+        model,
         grid,
-        packing=c.packing,
-        density=c.bed_density,
-        particles_per_cell=c.particles_per_cell,
-        gravity=c.gravity,
+        packing=BedPacking(bed.packing),
+        density=bed.density,
+        particles_per_cell=resolution.particles_per_cell,
+        gravity=bed.gravity,
     )
-    return Runner(
+
+
+def _runner(c: _Common, grid, state, dt, phases, every, reference_speed, outputs: Outputs, key) -> Runner:
+    """A :class:`Runner` over a fresh bed made from ``c``; ``every`` = (record_every, snapshot_every)
+    as from :func:`_output_every`; ``key`` = the inputs that identify the run."""
+    record_every, snapshot_every = every
+    runner = Runner(
         c.model,
         grid,
-        particles,
+        bed_particles(c.model, grid, c.bed, c.resolution),
         state,
         dt,
         phases,
@@ -294,12 +313,14 @@ def _runner(c: _Common, grid, state, dt, phases, record_every, reference_speed, 
         record_every=record_every,
         reference_speed=reference_speed,
         fingerprint=key,
-        checkpoint_path=None if ckpt is None else Path(ckpt),
-        checkpoint_interval=check_positive("checkpoint_interval", interval),
-        snapshot_dir=None if snap is None else Path(snap),
-        snapshot_every=snap_every,
-        progress=progress,
+        checkpoint_path=outputs.checkpoint_path,
+        checkpoint_interval=outputs.checkpoint_interval,
+        snapshot_dir=outputs.snapshot_dir,
+        snapshot_every=snapshot_every,
+        progress=outputs.progress,
     )
+    runner.frame_every = _frame_every(outputs.frame_count, phases[-1].n_steps, record_every)
+    return runner
 
 
 def run_intrusion(
@@ -310,61 +331,40 @@ def run_intrusion(
     direction: float = math.pi / 2,
     angle: float = 0.0,
     speed: float = 0.05,
-    cell_size: float | None = None,
-    bed_depth: float | None = None,
-    bed_width: float | None = None,
-    packing: BedPacking | str = BedPacking.CONSOLIDATED,
-    bed_density: float | None = None,
-    walls: Walls | str | None = None,
-    youngs_modulus: float | None = None,
-    poisson_ratio: float | None = None,
-    friction_coefficient: float | None = None,
-    surface_friction: float | None = None,
-    rate_dependent: bool = False,
-    contact: ContactScheme | str = ContactScheme.TWO_FIELD,
-    averaging_window: float | None = None,
-    settle_time: float | None = None,
-    cfl: float = 0.3,
-    gravity: float = 9.81,
-    particles_per_cell: int = 2,
-    min_cells_across: int = 6,
-    record_spacing: float | None = None,
-    snapshot_dir: str | Path | None = None,
-    snapshot_spacing: float | None = None,
-    checkpoint_path: str | Path | None = None,
-    checkpoint_interval: float = 60.0,
-    resume: bool = False,
-    progress: ProgressCallback | None = None,
-    frame_count: int = 0,
+    bed: Bed = Bed(),
+    resolution: Resolution = Resolution(),
+    outputs: Outputs = Outputs(),
+    stroke: Stroke = Stroke(),
+    **legacy: Any,
 ) -> IntrusionResult:
     """Push ``body`` at constant velocity into a settled bed and report the force at ``depth``.
 
     The body, rotated by ``angle`` [rad] about +y, starts with its lowest point just above the free
     surface (z = 0) and moves at ``speed`` [m/s] along ``direction`` [rad] below the +x axis
     (pi/2 = straight down). The summary averages force and torque over the rows where the reference
-    point's depth is within ``averaging_window`` [m] (default ``max(4 cell_size, 0.2 depth)``) centred on
-    ``depth`` [m]; the run stops when the window has been passed.
+    point's depth is within ``stroke.averaging_window`` [m] (default ``max(4 cell_size, 0.2 depth)``)
+    centred on ``depth`` [m]; the run stops when the window has been passed.
 
-    Parameters (others)
-    -------------------
-    cell_size : grid spacing [m]; default body diameter / 16; at least ``min_cells_across`` cells across.
-    bed_depth, bed_width : bed size [m]; defaults leave max(6 body radii, 2.5 depth) of grains beside the
-        path and max(4 radii, 1.5 depth) below it: nearer free-slip walls cut the failure mechanism
-        and lower the force at depth (checked: walls 5 plate lengths away already do).
-    packing, bed_density : initial state (:class:`BedPacking`) and density [kg/m^3].
-    walls : :class:`Walls` or one kind for all sides ('free-slip', 'no-slip', 'frictional').
-    youngs_modulus, poisson_ratio, friction_coefficient, surface_friction, rate_dependent : overrides of
-        the material's continuum parameters.
-    contact : grid contact scheme (:class:`~terradyn.mpm.bodies.ContactScheme`): ``"two-field"``
-        (default; bodies need no thickness, composites and placed bodies as bare ones) or the legacy
-        ``"cover"`` (plates thickened to three cells).
-    record_spacing : travel [m] per recorded row (forces are averaged over it); default cell_size / 4.
-    snapshot_dir, snapshot_spacing : write particle NetCDF snapshots every ``snapshot_spacing`` [m] of travel.
-    checkpoint_path, checkpoint_interval, resume : checkpoint file (.npz), wall-clock seconds between
-        checkpoints, and whether to continue from an existing checkpoint.
-    progress : callable ``(simulated_time_s, fraction_done)``.
-    frame_count : keep about this many light copies of the state during the motion (``result.frames``,
-        for :func:`terradyn.plotting.mpm.animate_frames`); 0 keeps none. Frames are checkpointed.
+    Specs (:mod:`terradyn.mpm.specs`)
+    ---------------------------------
+    bed : :class:`Bed`. Sizing rule for ``depth``/``width`` left None: max(6 body radii, 2.5 depth) of
+        grains beside the path and max(4 radii, 1.5 depth) below it: nearer free-slip walls cut the
+        failure mechanism and lower the force at depth (checked: walls 5 plate lengths away already do).
+    resolution : :class:`Resolution`; cell size default body diameter / 16, at least
+        ``min_cells_across`` (default 6) cells across the body. Contact ``"two-field"`` (default;
+        bodies need no thickness, composites and placed bodies as bare ones) or the legacy ``"cover"``
+        (plates thickened to three cells).
+    outputs : :class:`Outputs`; one recorded row per ``record_spacing`` [m] of travel (or
+        ``record_interval`` [s]; default cell_size / 4), snapshots every ``snapshot_spacing`` [m]
+        (default 4 cells), checkpoints, progress ``(simulated_time_s, fraction_done)`` and
+        ``frame_count`` light copies of the state during the motion (``result.frames``, for
+        :func:`terradyn.plotting.mpm.animate_frames`).
+    stroke : :class:`Stroke`, the averaging window.
+    **legacy : the flat keywords of earlier releases (``cell_size=``, ``bed_depth=``,
+        ``checkpoint_path=``..., each a field of one spec, see :data:`terradyn.mpm.specs.LEGACY`) and
+        the model overrides ``youngs_modulus``, ``poisson_ratio``, ``friction_coefficient``,
+        ``surface_friction``, ``rate_dependent`` (single continuum parameters of the material). An
+        unknown keyword raises TypeError.
 
     Checkpoints: an existing ``checkpoint_path`` is never overwritten or removed by a fresh run
     (:class:`~terradyn.errors.InputError` unless ``resume``); a finished run keeps its final
@@ -373,59 +373,29 @@ def run_intrusion(
     ``progress`` may change). On KeyboardInterrupt the state at the end of the last completed chunk
     is checkpointed and :class:`~terradyn.mpm.solver.RunInterrupted` is raised.
     """
-    overrides = dict(
-        youngs_modulus=youngs_modulus,
-        poisson_ratio=poisson_ratio,
-        friction_coefficient=friction_coefficient,
-        surface_friction=surface_friction,
-        rate_dependent=rate_dependent,
+    specs, overrides = _specs(
+        "run_intrusion", legacy, "bed_length", bed=bed, resolution=resolution, outputs=outputs, stroke=stroke
     )
-    shared = (cell_size, cfl, gravity, packing, bed_density, particles_per_cell, walls, min_cells_across)
-    c, eff = _common(body, material, *shared, overrides, contact)
-    h = c.cell_size
+    c, eff = _common(body, material, specs["bed"], specs["resolution"], overrides, min_cells=6)
+    outputs, h = specs["outputs"], c.cell_size
     check_positive("depth", depth)
-    check_range(
-        "direction",
-        direction,
-        math.radians(5.0),
-        math.radians(175.0),
-        unit="rad",
-        hint="the body must enter the bed from the surface",
-    )
+    hint = "the body must enter the bed from the surface"
+    check_range("direction", direction, math.radians(5.0), math.radians(175.0), unit="rad", hint=hint)
     angle = check_range("angle", angle, -2 * math.pi, 2 * math.pi, unit="rad")
     check_positive("speed", speed)
-    window = max(4.0 * h, 0.2 * depth) if averaging_window is None else averaging_window
-    check_positive("averaging_window", window)
+    window = specs["stroke"].averaging_window
+    window = max(4.0 * h, 0.2 * depth) if window is None else window
     seg = body_segments(eff, h)
-    grid, pose0, travel = _intrusion_bed(seg, c, depth, window, direction, angle, bed_depth, bed_width)
-    sin_d, cos_d = math.sin(direction), math.cos(direction)
-    model = c.model
-    dt = stable_time_step(model, h, cfl=c.cfl, speed=speed)
-    settle = _settle_time(c, grid.depth, settle_time)
-    vel = (speed * cos_d, -speed * sin_d, 0.0)
-    n_move = max(1, math.ceil(travel / speed / dt))
+    grid, pose0, travel = _intrusion_bed(seg, c, depth, window, direction, angle)
+    dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=speed)
+    settle_phases, settle = _settle_phases(c, grid.depth, dt)
+    vel = (speed * math.cos(direction), -speed * math.sin(direction), 0.0)
     phases = [
-        *_settle_phases(c, grid.depth, settle, dt),
-        Phase("intrude", n_move, twist=vel, free=(False, False)),
+        *settle_phases,
+        Phase("intrude", max(1, math.ceil(travel / speed / dt)), twist=vel, free=(False, False)),
     ]
-    spacing = 0.25 * h if record_spacing is None else check_positive("record_spacing", record_spacing)
-    record_every = max(1, round(spacing / speed / dt))
-    state = BodyState(
-        seg=seg,
-        pose=pose0,
-        twist=np.zeros(3),
-        free=np.zeros(2, dtype=np.bool_),
-        mass=1.0,
-        load=np.zeros(2),
-        friction=model.surface_friction,
-        width=body.width,
-        contact=c.contact,
-    )
-    snap_every = 0
-    if snapshot_dir is not None:
-        s_sp = 4 * h if snapshot_spacing is None else check_positive("snapshot_spacing", snapshot_spacing)
-        snap_every = max(1, round(s_sp / (record_every * dt * speed)))
-    io = (snapshot_dir, snap_every, checkpoint_path, checkpoint_interval, progress)
+    every = _output_every(outputs, dt, speed, 0.25 * h, 4 * h)
+    state = _body_state(c, seg, pose0, np.zeros(2, dtype=np.bool_), 1.0, np.zeros(2), body.width)
     named = dict(
         run="intrusion",
         depth=depth,
@@ -436,12 +406,10 @@ def run_intrusion(
         settle_time=settle,
         bed_width=grid.width,
         bed_depth=grid.depth,
-        frame_count=frame_count,
+        frame_count=outputs.frame_count,
     )
-    key = _run_inputs(c, body, named)
-    runner = _runner(c, grid, state, dt, phases, record_every, speed, io, key)
-    runner.frame_every = _frame_every(frame_count, phases[-1].n_steps, record_every)
-    wall = _execute(runner, resume, eff)
+    runner = _runner(c, grid, state, dt, phases, every, speed, outputs, _run_inputs(c, body, named))
+    wall = _execute(runner, outputs.resume, eff)
     series = _series(runner, body.width, skip_phases=1)
     series = {"depth_m": -series["z_m"], **series}
     sel = np.abs(series["depth_m"] - depth) <= 0.5 * window
@@ -449,16 +417,31 @@ def run_intrusion(
         raise InputError("averaging_window", window, "a window containing recorded rows", "widen it")
     summary = {
         "depth_m": float(depth),
-        "force_x_N": float(series["force_x_N"][sel].mean()),
-        "force_z_N": float(series["force_z_N"][sel].mean()),
-        "torque_y_Nm": float(series["torque_y_Nm"][sel].mean()),
+        **{k: float(series[k][sel].mean()) for k in ("force_x_N", "force_z_N", "torque_y_Nm")},
         "direction_rad": float(direction),
         "angle_rad": float(angle),
         "speed_m_s": float(speed),
         "averaging_window_m": float(window),
     }
-    meta = _metadata(runner, model, body, eff, wall)
+    meta = _metadata(runner, c.model, body, eff, wall)
     return IntrusionResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())
+
+
+def _body_state(c: _Common, seg, pose, free, mass, load, width, inertia=None) -> BodyState:
+    """The rigid body at rest at ``pose`` with the model's surface friction and the run's contact."""
+    extra = {} if inertia is None else {"inertia": inertia}
+    return BodyState(
+        seg=seg,
+        pose=pose,
+        twist=np.zeros(3),
+        free=free,
+        mass=mass,
+        load=load,
+        friction=c.model.surface_friction,
+        width=width,
+        contact=c.contact,
+        **extra,
+    )
 
 
 def _metadata(runner: Runner, model: GranularModel, body: Body, eff: Body, wall: float) -> dict[str, Any]:
@@ -488,11 +471,12 @@ def _nominal_radius(wheel: Body) -> float:
     return float(r) if r is not None else float(wheel.bounding_radius)
 
 
-def _wheel_bed(seg, c: _Common, travel, v_forward, bed_depth, bed_length):
+def _wheel_bed(seg, c: _Common, travel, v_forward):
     """Bed for a wheel run and its start pose (lowest point half a cell above the surface)."""
     h = c.cell_size
     reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
     margin = max(2.0 * reach, 4 * h)
+    bed_depth, bed_length = c.bed.depth, c.bed.width
     bed_depth = 2.0 * reach + margin if bed_depth is None else bed_depth
     bed_length = travel + 2.0 * (reach + margin) if bed_length is None else bed_length
     check_positive("bed_length", bed_length)
@@ -536,80 +520,27 @@ def _wheel_summary(runner, width, seg, average_fraction, radius, load):
     return series, summary
 
 
-def run_wheel(
-    wheel: Body,
-    material: Material | GranularModel,
-    *,
-    load: float,
-    omega: float | None = None,
-    slip: float | None = None,
-    drive_torque: float | None = None,
-    drawbar_load: float = 0.0,
-    max_omega: float = 5.0,
-    inertia: float | None = None,
-    duration: float | None = None,
-    sink_time: float | None = None,
-    average_fraction: float = 0.5,
-    cell_size: float | None = None,
-    bed_depth: float | None = None,
-    bed_length: float | None = None,
-    packing: BedPacking | str = BedPacking.CONSOLIDATED,
-    bed_density: float | None = None,
-    walls: Walls | str | None = None,
-    youngs_modulus: float | None = None,
-    poisson_ratio: float | None = None,
-    friction_coefficient: float | None = None,
-    surface_friction: float | None = None,
-    rate_dependent: bool = False,
-    contact: ContactScheme | str = ContactScheme.TWO_FIELD,
-    settle_time: float | None = None,
-    cfl: float = 0.3,
-    gravity: float = 9.81,
-    particles_per_cell: int = 2,
-    min_cells_across: int = 8,
-    record_interval: float | None = None,
-    snapshot_dir: str | Path | None = None,
-    snapshot_interval: float | None = None,
-    checkpoint_path: str | Path | None = None,
-    checkpoint_interval: float = 60.0,
-    resume: bool = False,
-    progress: ProgressCallback | None = None,
-    frame_count: int = 0,
-) -> WheelResult:
-    """Drive a wheel (any body) over a settled bed under a vertical ``load`` [N].
+@dataclass(frozen=True)
+class _WheelMotion:
+    """The checked drive of a wheel run: commands, the largest spin, forward speed and run length."""
 
-    The wheel first sinks under its load for ``sink_time`` [s] (not spinning, vertical motion free,
-    grains damped), then spins at ``omega`` [rad/s] about +y for ``duration`` [s]. With ``slip`` given
-    the forward speed is prescribed, ``vx = (1 - slip) omega r`` (r: nominal outer radius), and the
-    vertical motion is free under the load; with ``slip=None`` both translations are free
-    (self-propelled). ``omega = 0`` with ``slip=None`` leaves a body resting under its load. The
-    default ``duration`` is ``3 / |omega|``: starting from the pit it sank into, a wheel's pull and
-    sinkage settle after about two radians of rotation (measured for a 0.13 m wheel on MS).
+    torque_mode: bool
+    torque: float
+    omega: float
+    slip: float | None
+    spin: float
+    v_forward: float
+    travel: float
+    duration: float
+    sink_time: float
 
-    Torque control: give ``drive_torque`` [N m] (+ drives forward) instead of ``omega``; the spin is
-    then free, with moment of inertia ``inertia`` [kg m^2] (default a uniform disc of the load's mass,
-    ``load / g r^2 / 2``), starting from rest, and the forward motion is free. The time step is sized
-    for spins up to ``max_omega`` [rad/s]; a wheel that spins up beyond it (a torque the bed cannot
-    resist) stops the run with :class:`~terradyn.mpm.MPMInstabilityError`. The default duration is
-    then ``20 sqrt(r / g)``. ``drawbar_load`` [N] is a horizontal resisting force on the axle (a towed
-    load, + backwards) whenever the forward motion is free.
+    @property
+    def direction(self) -> float:
+        return self.v_forward if not self.torque_mode else (1.0 if self.torque >= 0 else -1.0)
 
-    The summary averages the last ``average_fraction`` of the drive: ``sinkage_m`` (depth of the
-    lowest point below z = 0), ``drawbar_pull_N`` (horizontal soil force, + forward),
-    ``drive_torque_Nm`` (= -soil torque about +y at the axle), ``force_z_N``, ``slip`` (measured).
-    Other keywords as in :func:`run_intrusion`; ``record_interval`` and ``snapshot_interval`` are in
-    seconds of simulated time.
-    """
-    overrides = dict(
-        youngs_modulus=youngs_modulus,
-        poisson_ratio=poisson_ratio,
-        friction_coefficient=friction_coefficient,
-        surface_friction=surface_friction,
-        rate_dependent=rate_dependent,
-    )
-    shared = (cell_size, cfl, gravity, packing, bed_density, particles_per_cell, walls, min_cells_across)
-    c, eff = _common(wheel, material, *shared, overrides, contact)
-    h = c.cell_size
+
+def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, drive_torque, drawbar_load,
+                  max_omega) -> _WheelMotion:  # fmt: skip
     check_positive("load", load)
     torque_mode = drive_torque is not None
     if (omega is None) == (drive_torque is None):
@@ -629,65 +560,95 @@ def run_wheel(
                 "drawbar_load", drawbar_load, "0 when slip is given", "the forward speed is imposed"
             )
     check_range("drawbar_load", drawbar_load, -10.0 * load, 10.0 * load, unit="N")
-    check_range("average_fraction", average_fraction, 0.05, 1.0)
-    radius = _nominal_radius(wheel)
-    seg = body_segments(eff, h)
-    reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
     spin = max_omega if torque_mode else abs(omega_cmd)  # the largest spin the step must resolve
+    duration = drive.duration
     if duration is None:
         duration = 3.0 / spin if not torque_mode and spin != 0 else 20.0 * math.sqrt(reach / c.gravity)
     check_positive("duration", duration)
-    sink_time = 3.0 * math.sqrt(reach / c.gravity) if sink_time is None else sink_time
-    check_positive("sink_time", sink_time, allow_zero=True)
+    sink_time = 3.0 * math.sqrt(reach / c.gravity) if drive.sink_time is None else drive.sink_time
     if torque_mode:
-        v_forward = 0.0
-        travel = spin * radius * duration
+        v_forward, travel = 0.0, spin * radius * duration
     else:
         v_forward = (1.0 - slip) * omega_cmd * radius if slip is not None else omega_cmd * radius
         travel = abs(v_forward) * duration
-    direction = v_forward if not torque_mode else (1.0 if torque >= 0 else -1.0)
-    grid, pose0 = _wheel_bed(seg, c, travel, direction, bed_depth, bed_length)
-    model = c.model
-    v_max = spin * reach + (spin * radius if torque_mode else abs(v_forward)) + math.sqrt(2 * c.gravity * h)
-    dt = stable_time_step(model, h, cfl=c.cfl, speed=v_max)
-    mass = load / c.gravity / wheel.width
-    inertia_w = (
-        0.5 * mass * radius**2 if inertia is None else check_positive("inertia", inertia) / wheel.width
+    return _WheelMotion(torque_mode, torque, omega_cmd, slip, spin, v_forward, travel, duration, sink_time)
+
+
+def run_wheel(
+    wheel: Body,
+    material: Material | GranularModel,
+    *,
+    load: float,
+    omega: float | None = None,
+    slip: float | None = None,
+    drive_torque: float | None = None,
+    drawbar_load: float = 0.0,
+    max_omega: float = 5.0,
+    inertia: float | None = None,
+    bed: Bed = Bed(),
+    resolution: Resolution = Resolution(),
+    outputs: Outputs = Outputs(),
+    drive: Drive = Drive(),
+    **legacy: Any,
+) -> WheelResult:
+    """Drive a wheel (any body) over a settled bed under a vertical ``load`` [N].
+
+    The wheel first sinks under its load for ``drive.sink_time`` [s] (not spinning, vertical motion
+    free, grains damped), then spins at ``omega`` [rad/s] about +y for ``drive.duration`` [s]. With
+    ``slip`` given the forward speed is prescribed, ``vx = (1 - slip) omega r`` (r: nominal outer
+    radius), and the vertical motion is free under the load; with ``slip=None`` both translations are
+    free (self-propelled). ``omega = 0`` with ``slip=None`` leaves a body resting under its load. The
+    default duration is ``3 / |omega|``: starting from the pit it sank into, a wheel's pull and
+    sinkage settle after about two radians of rotation (measured for a 0.13 m wheel on MS).
+
+    Torque control: give ``drive_torque`` [N m] (+ drives forward) instead of ``omega``; the spin is
+    then free, with moment of inertia ``inertia`` [kg m^2] (default a uniform disc of the load's mass,
+    ``load / g r^2 / 2``), starting from rest, and the forward motion is free. The time step is sized
+    for spins up to ``max_omega`` [rad/s]; a wheel that spins up beyond it (a torque the bed cannot
+    resist) stops the run with :class:`~terradyn.mpm.MPMInstabilityError`. The default duration is
+    then ``20 sqrt(r / g)``. ``drawbar_load`` [N] is a horizontal resisting force on the axle (a towed
+    load, + backwards) whenever the forward motion is free.
+
+    The summary averages the last ``drive.average_fraction`` of the drive: ``sinkage_m`` (depth of
+    the lowest point below z = 0), ``drawbar_pull_N`` (horizontal soil force, + forward),
+    ``drive_torque_Nm`` (= -soil torque about +y at the axle), ``force_z_N``, ``slip`` (measured).
+
+    Specs as in :func:`run_intrusion`, with :class:`Drive` for the run length. The bed's sizing rule
+    leaves max(2 reaches, 4 cells) of grains beyond the wheel's path and below two reaches; its
+    ``width`` is the bed length. The resolution needs 8 cells across the wheel by default.
+    ``outputs`` intervals are in seconds of simulated time (record: duration / 200, snapshots:
+    duration / 20). The flat keywords of earlier releases (``cell_size=``, ``duration=``,
+    ``bed_length=``...) and the model overrides work as in :func:`run_intrusion`.
+    """
+    specs, overrides = _specs(
+        "run_wheel", legacy, "bed_width", bed=bed, resolution=resolution, outputs=outputs, drive=drive
     )
-    state = BodyState(
-        seg=seg,
-        pose=pose0,
-        twist=np.zeros(3),
-        free=np.zeros(3, dtype=np.bool_),
-        mass=mass,
-        load=np.array([-drawbar_load / wheel.width, -load / wheel.width, torque / wheel.width]),
-        friction=model.surface_friction,
-        width=wheel.width,
-        inertia=inertia_w,
-        contact=c.contact,
+    c, eff = _common(wheel, material, specs["bed"], specs["resolution"], overrides, min_cells=8)
+    outputs, h, g = specs["outputs"], c.cell_size, c.gravity
+    radius = _nominal_radius(wheel)
+    seg = body_segments(eff, h)
+    reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
+    m = _wheel_motion(
+        c, specs["drive"], radius, reach, load, omega, slip, drive_torque, drawbar_load, max_omega
     )
-    wave = model.wave_speed()
-    drive_twist = (v_forward if slip is not None else 0.0, 0.0, omega_cmd)
-    settle = _settle_time(c, grid.depth, settle_time)
+    grid, pose0 = _wheel_bed(seg, c, m.travel, m.direction)
+    v_max = m.spin * reach + (m.spin * radius if m.torque_mode else abs(m.v_forward)) + math.sqrt(2 * g * h)
+    dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=v_max)
+    w = wheel.width
+    mass = load / g / w
+    inertia_w = 0.5 * mass * radius**2 if inertia is None else check_positive("inertia", inertia) / w
+    load_w = np.array([-drawbar_load / w, -load / w, m.torque / w])
+    state = _body_state(c, seg, pose0, np.zeros(3, dtype=np.bool_), mass, load_w, w, inertia_w)
+    settle_phases, settle = _settle_phases(c, grid.depth, dt)
+    damping = c.model.wave_speed() / grid.depth
+    drive_twist = (m.v_forward if m.slip is not None else 0.0, 0.0, m.omega)
     phases = [
-        *_settle_phases(c, grid.depth, settle, dt),
-        Phase("sink", max(1, round(sink_time / dt)), damping=wave / grid.depth, free=(False, True, False)),
-        Phase(
-            "drive",
-            max(1, round(duration / dt)),
-            twist=drive_twist,
-            free=(slip is None, True, torque_mode),
-        ),
-    ]
-    interval = (
-        duration / 200.0 if record_interval is None else check_positive("record_interval", record_interval)
-    )
-    record_every = max(1, round(interval / dt))
-    snap_every = 0
-    if snapshot_dir is not None:
-        s_int = duration / 20.0 if snapshot_interval is None else snapshot_interval
-        snap_every = max(1, round(check_positive("snapshot_interval", s_int) / (record_every * dt)))
-    io = (snapshot_dir, snap_every, checkpoint_path, checkpoint_interval, progress)
+        *settle_phases,
+        Phase("sink", max(1, round(m.sink_time / dt)), damping=damping, free=(False, True, False)),
+        Phase("drive", max(1, round(m.duration / dt)), twist=drive_twist,
+              free=(m.slip is None, True, m.torque_mode)),
+    ]  # fmt: skip
+    every = _output_every(outputs, dt, None, m.duration / 200.0, m.duration / 20.0)
     named = dict(
         run="wheel",
         load=load,
@@ -695,23 +656,24 @@ def run_wheel(
         slip=slip,
         drive_torque=drive_torque,
         drawbar_load=drawbar_load,
-        max_omega=max_omega if torque_mode else None,
-        inertia=inertia_w * wheel.width,
-        duration=duration,
-        sink_time=sink_time,
+        max_omega=max_omega if m.torque_mode else None,
+        inertia=inertia_w * w,
+        duration=m.duration,
+        sink_time=m.sink_time,
         settle_time=settle,
         bed_length=grid.width,
         bed_depth=grid.depth,
-        frame_count=frame_count,
+        frame_count=outputs.frame_count,
     )
-    key = _run_inputs(c, wheel, named)
-    runner = _runner(c, grid, state, dt, phases, record_every, v_max, io, key)
-    runner.frame_every = _frame_every(frame_count, phases[-1].n_steps, record_every)
-    wall = _execute(runner, resume, eff)
-    series, summary = _wheel_summary(runner, wheel.width, seg, average_fraction, radius, load)
+    runner = _runner(c, grid, state, dt, phases, every, v_max, outputs, _run_inputs(c, wheel, named))
+    wall = _execute(runner, outputs.resume, eff)
+    avg = specs["drive"].average_fraction
+    series, summary = _wheel_summary(runner, w, seg, avg, radius, load)
     summary["drawbar_load_N"] = float(drawbar_load)
-    if torque_mode:
-        summary["applied_torque_Nm"] = torque
-    meta = _metadata(runner, model, wheel, eff, wall)
-    meta["mode"] = "torque-driven" if torque_mode else "forced-slip" if slip is not None else "self-propelled"
+    if m.torque_mode:
+        summary["applied_torque_Nm"] = m.torque
+    meta = _metadata(runner, c.model, wheel, eff, wall)
+    meta["mode"] = (
+        "torque-driven" if m.torque_mode else "forced-slip" if m.slip is not None else "self-propelled"
+    )
     return WheelResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())

@@ -4,7 +4,8 @@ The stateless models (RFT, DRFT, Wong-Reece) map ``(body, pose, twist) -> Wrench
 continuum remembers where it has been pushed, so MPM is driven instead through
 :class:`terradyn.terrain.StatefulTerrainModel`::
 
-    terrain = MPMTerrain(materials.get("MS"), bed_width=0.4, bed_depth=0.15, cell_size=0.005)
+    terrain = MPMTerrain(materials.get("MS"), bed=Bed(width=0.4, depth=0.15),
+                         resolution=Resolution(cell_size=0.005))
     terrain.init(plate, Pose2D(0.0, 0.01))          # builds and settles the bed, places the body
     for k in range(n):
         w = terrain.step(pose, twist, dt)            # grains advance by dt with the body moving rigidly
@@ -20,25 +21,20 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-from ..errors import InputError, check_positive, check_range
+from ..errors import InputError, check_positive
 from ..geometry import Body
 from ..kinematics import Pose2D, Twist2D, Wrench2D
 from ..materials import Material
 from .bodies import BodyState, ContactScheme, body_segments, effective_body
 from .checkpoint import load_checkpoint, save_checkpoint
-from .model import BedPacking, GranularModel, Walls, default_settle_time, resolve_model
-from .solver import (
-    BedGrid,
-    ParticleState,
-    Phase,
-    Runner,
-    _HeldInterrupts,
-    make_bed,
-    stable_time_step,
-)
+from .model import BedPacking, GranularModel, Walls, resolve_model
+from .runs import bed_particles, settle_time
+from .solver import BedGrid, ParticleState, Phase, Runner, _HeldInterrupts, stable_time_step
+from .specs import Bed, Resolution, apply_legacy
 
 __all__ = ["MPMTerrain"]
 
@@ -50,18 +46,19 @@ class MPMTerrain:
     ----------
     material : a terradyn :class:`~terradyn.materials.Material` (its ``[continuum]`` parameters) or a
         :class:`~terradyn.mpm.GranularModel`.
-    bed_width, bed_depth : size of the grain box [m]; its free surface is at z = 0 and it spans
-        ``x_left <= x <= x_left + bed_width`` (default centred on x = 0).
-    cell_size : grid spacing [m].
-    air : empty grid above the surface [m] (default ``bed_depth``); the body must stay below its top.
+    bed : :class:`~terradyn.mpm.Bed`; its ``width`` and ``depth`` [m] are required (no sizing rule
+        without a body path): the free surface is at z = 0 and the grains span
+        ``x_left <= x <= x_left + width`` (default centred on x = 0). Packing, density, walls, gravity
+        and settling time as in :func:`terradyn.mpm.run_intrusion`.
+    resolution : :class:`~terradyn.mpm.Resolution`; its ``cell_size`` [m] is required; particles per
+        cell, cfl and contact scheme as in :func:`terradyn.mpm.run_intrusion`.
+    air : empty grid above the surface [m] (default the bed depth); the body must stay below its top.
     max_speed : the largest body-point speed [m/s] the caller will impose; it sets the MPM time step
         (``dt = cfl h / (c_p + max_speed)``) and a faster body stops :meth:`step` with an error.
-    packing, bed_density, walls, particles_per_cell, cfl, gravity, settle_time : as in
-        :func:`terradyn.mpm.run_intrusion`.
-    youngs_modulus, poisson_ratio, friction_coefficient, surface_friction, rate_dependent :
-        overrides of the material's continuum parameters.
-    contact : grid contact scheme (:class:`~terradyn.mpm.bodies.ContactScheme`): ``"two-field"``
-        (default; bodies need no thickness) or the legacy ``"cover"``.
+    **legacy : the flat keywords ``bed_width=``, ``bed_depth=``, ``cell_size=``, ``packing=``...
+        (fields of the two specs, :data:`terradyn.mpm.specs.LEGACY`) and the model overrides
+        ``youngs_modulus``, ``poisson_ratio``, ``friction_coefficient``, ``surface_friction``,
+        ``rate_dependent``.
     """
 
     name = "mpm"
@@ -70,57 +67,41 @@ class MPMTerrain:
         self,
         material: Material | GranularModel,
         *,
-        bed_width: float,
-        bed_depth: float,
-        cell_size: float,
+        bed: Bed = Bed(),
+        resolution: Resolution = Resolution(),
         x_left: float | None = None,
         air: float | None = None,
         max_speed: float = 0.5,
-        packing: BedPacking | str = BedPacking.CONSOLIDATED,
-        bed_density: float | None = None,
-        walls: Walls | str | None = None,
-        particles_per_cell: int = 2,
-        cfl: float = 0.3,
-        gravity: float = 9.81,
-        settle_time: float | None = None,
-        youngs_modulus: float | None = None,
-        poisson_ratio: float | None = None,
-        friction_coefficient: float | None = None,
-        surface_friction: float | None = None,
-        rate_dependent: bool = False,
-        contact: ContactScheme | str = ContactScheme.TWO_FIELD,
+        **legacy: Any,
     ) -> None:
-        self.contact = ContactScheme.coerce(contact)
-        model = resolve_model(
-            material,
-            rate_dependent=rate_dependent,
-            youngs_modulus=youngs_modulus,
-            poisson_ratio=poisson_ratio,
-            friction_coefficient=friction_coefficient,
-            surface_friction=surface_friction,
+        for name, spec, kind in (("bed", bed, Bed), ("resolution", resolution, Resolution)):
+            if not isinstance(spec, kind):
+                raise InputError(name, spec, f"a terradyn.mpm.{kind.__name__}")
+        specs, overrides = apply_legacy(
+            "MPMTerrain", legacy, {"bed": bed, "resolution": resolution}, exclude=frozenset({"bed_length"})
         )
-        self.model = model
-        check_positive("bed_width", bed_width)
-        check_positive("bed_depth", bed_depth)
-        air = bed_depth if air is None else air
-        x_left = -0.5 * bed_width if x_left is None else float(x_left)
+        bed, resolution = specs["bed"], specs["resolution"]
+        width, depth, cell = bed.width, bed.depth, resolution.cell_size
+        for name, value in (("bed_width", width), ("bed_depth", depth), ("cell_size", cell)):
+            if value is None:
+                hint = "MPMTerrain has no sizing rule: give the bed and the cell size"
+                raise InputError(name, None, "a size [m]", hint)
+        assert width is not None and depth is not None and cell is not None
+        self.bed, self.resolution = bed, resolution
+        self.contact = ContactScheme.coerce(resolution.contact)
+        self.model = model = resolve_model(material, **overrides)
+        air = depth if air is None else air
+        x_left = -0.5 * width if x_left is None else float(x_left)
         self.grid = BedGrid(
-            float(bed_width), float(bed_depth), float(air), float(cell_size), x_left, Walls.coerce(walls)
+            float(width), float(depth), float(air), float(cell), x_left, Walls.coerce(bed.walls)
         )
-        try:
-            self.packing = BedPacking(packing)
-        except ValueError:
-            raise InputError("packing", packing, "'consolidated' or 'unconsolidated'") from None
-        self.bed_density = bed_density
-        self.particles_per_cell = int(particles_per_cell)
-        self.gravity = check_range("gravity", gravity, 0.01, 100.0, unit="m/s^2")
-        self.cfl = check_range("cfl", cfl, 1e-3, 0.5, hint="explicit MPM is stable for cfl <= 0.5")
+        self.packing = BedPacking(bed.packing)
+        self.bed_density = bed.density
+        self.particles_per_cell = resolution.particles_per_cell
+        self.gravity = bed.gravity
+        self.cfl = resolution.cfl
         self.max_speed = check_positive("max_speed", max_speed)
-        self.settle_time = (
-            settle_time
-            if settle_time is None
-            else check_positive("settle_time", settle_time, allow_zero=True)
-        )
+        self.settle_time = bed.settle_time
         self.dt = stable_time_step(model, self.grid.cell_size, cfl=self.cfl, speed=self.max_speed)
         self._runner: Runner | None = None
         self._body: Body | None = None
@@ -181,9 +162,7 @@ class MPMTerrain:
         self._check_inside(state, pose, "pose")
         depth = self.grid.depth
         wave = self.model.wave_speed()
-        settle = self.settle_time
-        if settle is None:
-            settle = default_settle_time(self.model, depth, self.packing, self.gravity)
+        settle = settle_time(self.model, self.bed, depth)
         if settle > 0:
             runner.phases = [Phase("settle", max(1, round(settle / self.dt)), damping=wave / depth)]
             runner.run()
@@ -208,18 +187,10 @@ class MPMTerrain:
             width=body.width,
             contact=self.contact,
         )
-        particles = make_bed(
-            self.model,
-            self.grid,
-            packing=self.packing,
-            density=self.bed_density,
-            particles_per_cell=self.particles_per_cell,
-            gravity=self.gravity,
-        )
         runner = Runner(
             self.model,
             self.grid,
-            particles,
+            bed_particles(self.model, self.grid, self.bed, self.resolution),
             state,
             self.dt,
             [],

@@ -187,6 +187,21 @@ def converge(
     )
 
 
+def _resolution(run_options: dict[str, Any]) -> Any:
+    """The case's :class:`~terradyn.mpm.Resolution` from ``resolution=`` and the flat resolution
+    keywords in ``run_options`` (removed from it); its cell size is left to ``cell_sizes``."""
+    from ..mpm.specs import LEGACY, Resolution, apply_legacy
+
+    if "cell_size" in run_options:
+        raise InputError("cell_size", run_options["cell_size"], "cell_sizes instead (three or more)")
+    base = run_options.pop("resolution", Resolution())
+    flat = {k: run_options.pop(k) for k in list(run_options) if LEGACY.get(k, ("",))[0] == "resolution"}
+    base = apply_legacy("converge", flat, {"resolution": base})[0]["resolution"]
+    if base.cell_size is not None:
+        raise InputError("cell_size", base.cell_size, "cell_sizes instead (three or more)")
+    return base
+
+
 def converge_intrusion(
     body: Any,
     material: Any,
@@ -196,14 +211,14 @@ def converge_intrusion(
     progress: Callable[[int, int], None] | None = None,
     **run_options: Any,
 ) -> ConvergenceResult:
-    """:func:`terradyn.mpm.run_intrusion` of ``body`` at each cell size (other options as there)."""
+    """:func:`terradyn.mpm.run_intrusion` of ``body`` at each cell size; other options (specs such as
+    ``bed=`` and ``resolution=``, kinematics, flat keywords) as there."""
     from ..mpm import run_intrusion
 
-    if "cell_size" in run_options:
-        raise InputError("cell_size", run_options["cell_size"], "cell_sizes instead (three or more)")
+    base = _resolution(run_options)
 
     def run(h: float) -> Mapping[str, float]:
-        return run_intrusion(body, material, cell_size=h, **run_options).summary
+        return run_intrusion(body, material, resolution=base.replace(cell_size=h), **run_options).summary
 
     return converge(run, cell_sizes, quantities, progress=progress, metadata={"case": "intrusion"})
 
@@ -217,13 +232,13 @@ def converge_wheel(
     progress: Callable[[int, int], None] | None = None,
     **run_options: Any,
 ) -> ConvergenceResult:
-    """:func:`terradyn.mpm.run_wheel` of ``wheel`` at each cell size (other options as there)."""
+    """:func:`terradyn.mpm.run_wheel` of ``wheel`` at each cell size; other options (specs such as
+    ``bed=``, ``resolution=``, ``drive=``, the wheel's commands, flat keywords) as there."""
     from ..mpm import run_wheel
 
-    if "cell_size" in run_options:
-        raise InputError("cell_size", run_options["cell_size"], "cell_sizes instead (three or more)")
+    base = _resolution(run_options)
 
     def run(h: float) -> Mapping[str, float]:
-        return run_wheel(wheel, material, cell_size=h, **run_options).summary
+        return run_wheel(wheel, material, resolution=base.replace(cell_size=h), **run_options).summary
 
     return converge(run, cell_sizes, quantities, progress=progress, metadata={"case": "wheel"})

@@ -25,12 +25,15 @@ import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import InputError, SolverError, check_length, check_positive
 from ..materials import Material
+
+if TYPE_CHECKING:
+    from ..mpm.specs import Bed, Resolution
 
 __all__ = ["MPMFrictionFit", "fit_mpm_friction", "poisson_ratio_for_stability"]
 
@@ -101,6 +104,8 @@ def fit_mpm_friction(
     tolerance: float = 0.01,
     max_trials: int = 10,
     speed: float = 0.05,
+    bed: Bed | None = None,
+    resolution: Resolution | None = None,
     progress: Callable[[int, int], None] | None = None,
     run: Callable[..., Any] | None = None,
 ) -> MPMFrictionFit:
@@ -108,9 +113,19 @@ def fit_mpm_friction(
 
     ``data`` is a :class:`terradyn.rft.calibration.PlateData` (see :func:`read_plate_force_csv`),
     ``plate_length``, ``plate_width`` [m] the plate; the MPM runs use ``cell_size`` [m] (default: the
-    solver's) and ``speed`` [m/s]. Stops when the data/model scale is within ``tolerance`` of 1.
-    ``run`` replaces :func:`terradyn.mpm.run_intrusion` (tests)."""
+    solver's, or ``resolution.cell_size``), ``speed`` [m/s], and the ``bed`` and ``resolution``
+    specs (:mod:`terradyn.mpm.specs`) as in :func:`terradyn.mpm.run_intrusion`. Stops when the
+    data/model scale is within ``tolerance`` of 1. ``run`` replaces :func:`terradyn.mpm.run_intrusion`
+    (tests)."""
     from ..geometry import Plate
+    from ..mpm.specs import Bed, Resolution
+
+    bed = Bed() if bed is None else bed
+    resolution = Resolution() if resolution is None else resolution
+    if cell_size is not None:
+        if resolution.cell_size is not None:
+            raise InputError("cell_size", cell_size, "None when resolution.cell_size is given", "give one")
+        resolution = resolution.replace(cell_size=cell_size)
 
     if material.continuum is None:
         raise InputError("material", material.name, "a medium with a [continuum] table (MPM parameters)")
@@ -142,7 +157,7 @@ def fit_mpm_friction(
         for angle, direction, rows in groups:
             res = runner(
                 plate, material, depth=float(depth[rows].max()), angle=angle, direction=direction,
-                speed=speed, cell_size=cell_size, friction_coefficient=mu, poisson_ratio=nu,
+                speed=speed, bed=bed, resolution=resolution, friction_coefficient=mu, poisson_ratio=nu,
             )  # fmt: skip
             df = res.to_dataframe()
             order = np.argsort(df["depth_m"].to_numpy())
@@ -212,6 +227,6 @@ def fit_mpm_friction(
         r_squared=r2,
         trials=tuple(trials),
         material=fitted,
-        cell_size=cell_size,
+        cell_size=resolution.cell_size,
         converged=converged,
     )

@@ -21,7 +21,7 @@ __all__ = ["mpm_alpha_map", "mpm_wheel_versus_rft"]
 
 def _alpha_point(args: tuple) -> tuple[float, float, float, float]:
     """One MPM plate intrusion (module level so worker processes can run it)."""
-    from ..mpm import run_intrusion
+    from ..mpm import Resolution, run_intrusion
 
     material, length, width, thickness, depth, cell_size, speed, angle_deg, direction_deg = args
     plate = Plate(length, width, thickness=thickness)
@@ -31,8 +31,8 @@ def _alpha_point(args: tuple) -> tuple[float, float, float, float]:
         depth=depth,
         angle=math.radians(angle_deg),
         direction=math.radians(direction_deg),
-        cell_size=cell_size,
         speed=speed,
+        resolution=Resolution(cell_size=cell_size),
     )
     s = res.summary
     return s["force_x_N"], s["force_z_N"], s["torque_y_Nm"], res.metadata["wall_time_s"]
@@ -113,7 +113,7 @@ def _rft_on_body(body: Body, mat, angle_deg: float, direction_deg: float, depth:
 
 def _wheel_point(args: tuple) -> tuple[float, float, float, float, float]:
     """One forced-slip MPM wheel run (module level so worker processes can run it)."""
-    from ..mpm import run_wheel
+    from ..mpm import Drive, Resolution, run_wheel
 
     material, radius, width, load, slip, omega, cell_size, duration = args
     m = run_wheel(
@@ -122,8 +122,8 @@ def _wheel_point(args: tuple) -> tuple[float, float, float, float, float]:
         load=load,
         omega=omega,
         slip=slip,
-        cell_size=cell_size,
-        duration=duration,
+        resolution=Resolution(cell_size=cell_size),
+        drive=Drive(duration=duration),
     )
     s = m.summary
     return (

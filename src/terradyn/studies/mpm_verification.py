@@ -28,11 +28,14 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from enum import Enum
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import InputError, SolverError, check_length, check_positive, check_range
+
+if TYPE_CHECKING:
+    from ..mpm.specs import Bed, Resolution
 
 __all__ = ["FootingBase", "StripFootingResult", "strip_footing"]
 
@@ -125,15 +128,26 @@ def strip_footing(
     cell_size: float | None = None,
     settlement_ratio: float = 0.1,
     speed: float = 0.02,
+    bed: Bed | None = None,
+    resolution: Resolution | None = None,
     progress: Callable[[float, float], None] | None = None,
     run: Callable[..., Any] | None = None,
 ) -> StripFootingResult:
     """Bearing factor N_gamma of a rigid strip footing of ``width`` B [m] on a bed of ``material`` whose
     continuum friction is set to sin(``friction_angle_deg``) (plane strain); ``base`` rough or smooth.
-    ``cell_size`` [m] (default B/20), ``speed`` [m/s], ``settlement_ratio`` s/B of the reading.
-    ``run`` replaces :func:`terradyn.mpm.run_intrusion` (tests)."""
+    ``cell_size`` [m] (default B/20; or ``resolution.cell_size``), ``speed`` [m/s],
+    ``settlement_ratio`` s/B of the reading; ``bed`` and ``resolution`` (:mod:`terradyn.mpm.specs`)
+    as in :func:`terradyn.mpm.run_intrusion`. ``run`` replaces :func:`terradyn.mpm.run_intrusion`
+    (tests)."""
     from .. import materials
     from ..geometry import Plate
+    from ..mpm.specs import Bed, Outputs, Resolution, Stroke
+
+    bed = Bed() if bed is None else bed
+    resolution = Resolution() if resolution is None else resolution
+    if cell_size is not None and resolution.cell_size is not None:
+        raise InputError("cell_size", cell_size, "None when resolution.cell_size is given", "give one")
+    cell_size = resolution.cell_size if cell_size is None else cell_size
 
     phi_deg = check_range("friction_angle_deg", friction_angle_deg, 20.0, 45.0, unit="deg")
     try:
@@ -168,14 +182,14 @@ def strip_footing(
         Plate(length=b, width=out_of_plane),
         mat,
         depth=1.5 * settlement,
-        averaging_window=0.2 * settlement,
-        record_spacing=min(0.25 * h, 0.02 * settlement),
         speed=speed,
-        cell_size=h,
+        bed=bed,
+        resolution=resolution.replace(cell_size=h),
+        outputs=Outputs(record_spacing=min(0.25 * h, 0.02 * settlement), progress=progress),
+        stroke=Stroke(averaging_window=0.2 * settlement),
         friction_coefficient=mu,
         poisson_ratio=nu,
         surface_friction=ROUGH_FRICTION if base is FootingBase.rough else 0.0,
-        progress=progress,
     )
     df = res.to_dataframe()
     s = df["depth_m"].to_numpy()
@@ -189,7 +203,7 @@ def strip_footing(
     slope, intercept = np.polyfit(s[fit], q[fit], 1)
     near = np.abs(s - settlement) <= 0.1 * settlement
     q_read = float(q[near].mean()) if np.any(near) else float(intercept + slope * settlement)
-    gamma = mat.bulk_density * 9.81
+    gamma = (mat.bulk_density if bed.density is None else bed.density) * bed.gravity
     n_raw = 2.0 * q_read / (gamma * b)
     n_corr = 2.0 * float(intercept) / (gamma * b)
     return StripFootingResult(

@@ -1,0 +1,327 @@
+"""Frozen, validated specs of an MPM run: the bed, the resolution, the outputs and the run length.
+
+A case (:func:`~terradyn.mpm.run_intrusion`, :func:`~terradyn.mpm.run_wheel`,
+:class:`~terradyn.mpm.MPMTerrain`, the verification studies) takes its settings as a few specs rather
+than thirty keywords, so a new case reuses them instead of copying a signature::
+
+    from terradyn.mpm import Bed, Outputs, Resolution, Stroke, run_intrusion
+
+    bed = Bed(packing="unconsolidated", depth=0.2)          # None sizes = the case's sizing rule
+    fine = Resolution(cell_size=0.002, particles_per_cell=3)
+    res = run_intrusion(plate, ms, depth=0.03, bed=bed, resolution=fine, stroke=Stroke(0.004))
+
+Each spec checks its fields when it is made and raises :class:`~terradyn.errors.InputError` naming the
+field as the run functions always have (``cell_size``, ``bed_depth``, ``record_interval``...), so the
+CLI maps a bad value back to the flag the user typed. Specs are immutable and hashable; ``replace``
+returns a changed copy, and the repr lists only the fields that differ from the defaults.
+
+The run functions still take the old flat keywords (``cell_size=``, ``bed_depth=``...): each maps
+through the one table :data:`LEGACY` to a spec field.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import numbers
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, ClassVar, TypeVar
+
+from ..errors import InputError, check_positive, check_range
+from .bodies import ContactScheme
+from .model import BedPacking, Wall, Walls
+
+__all__ = [
+    "LEGACY",
+    "MODEL_OVERRIDES",
+    "Bed",
+    "Drive",
+    "Outputs",
+    "Resolution",
+    "Stroke",
+    "apply_legacy",
+]
+
+S = TypeVar("S", bound="_Spec")
+
+
+class _Spec:
+    """Shared behaviour: a short repr, ``replace`` and the message name of each field."""
+
+    #: field -> the name error messages (and the legacy keywords) use for it
+    _NAMES: ClassVar[dict[str, str]] = {}
+
+    def replace(self: S, **changes: Any) -> S:
+        """A copy with ``changes`` (checked like a new spec)."""
+        return dataclasses.replace(self, **changes)  # type: ignore[type-var]
+
+    @classmethod
+    def message_name(cls, name: str) -> str:
+        return cls._NAMES.get(name, name)
+
+    def __repr__(self) -> str:
+        default = type(self)()
+        parts = [
+            f"{f.name}={getattr(self, f.name)!r}"
+            for f in dataclasses.fields(self)  # type: ignore[arg-type]
+            if getattr(self, f.name) != getattr(default, f.name)
+        ]
+        return f"{type(self).__name__}({', '.join(parts)})"
+
+
+def _set(spec: object, name: str, value: Any) -> None:
+    object.__setattr__(spec, name, value)
+
+
+def _optional_positive(name: str, value: Any, *, allow_zero: bool = False) -> None:
+    if value is not None:
+        check_positive(name, value, allow_zero=allow_zero)
+
+
+def _path(name: str, value: Any) -> Path | None:
+    if value is None:
+        return None
+    if not isinstance(value, str | Path) or str(value) == "":
+        raise InputError(name, value, "a file system path (str or pathlib.Path) or None")
+    return Path(value)
+
+
+def _integer(name: str, value: Any, low: int, high: int | None, allowed: str) -> int:
+    whole = isinstance(value, numbers.Integral) or (isinstance(value, float) and value.is_integer())
+    if isinstance(value, bool) or not whole:
+        raise InputError(name, value, allowed)
+    v = int(value)
+    if v < low or (high is not None and v > high):
+        raise InputError(name, value, allowed)
+    return v
+
+
+@dataclass(frozen=True, repr=False)
+class Bed(_Spec):
+    """The granular bed: initial state, walls, gravity and size.
+
+    packing : :class:`BedPacking` (``"consolidated"`` or ``"unconsolidated"``).
+    density : initial bulk density [kg/m^3] (None: the packing's default; checked against the
+        material's critical density when the bed is made).
+    walls : :class:`Walls`, one :class:`Wall` or a kind for all sides (default free-slip).
+    gravity : [m/s^2].
+    depth, width : depth of the grains and their extent along x [m] (a wheel run calls it the bed
+        length); None = the case's sizing rule (see :func:`~terradyn.mpm.run_intrusion`,
+        :func:`~terradyn.mpm.run_wheel`); :class:`~terradyn.mpm.MPMTerrain` needs both.
+    settle_time : damped settling under gravity before the body moves [s] (None: 40 P-wave transits
+        of the bed, plus a compaction time for an unconsolidated bed; 0 skips settling).
+    """
+
+    packing: BedPacking | str = BedPacking.CONSOLIDATED
+    density: float | None = None
+    walls: Walls | Wall | str | None = field(default_factory=Walls)
+    gravity: float = 9.81
+    depth: float | None = None
+    width: float | None = None
+    settle_time: float | None = None
+
+    _NAMES: ClassVar[dict[str, str]] = {"density": "bed_density", "depth": "bed_depth", "width": "bed_width"}
+
+    def __post_init__(self) -> None:
+        try:
+            _set(self, "packing", BedPacking(self.packing))
+        except ValueError:
+            raise InputError("packing", self.packing, "'consolidated' or 'unconsolidated'") from None
+        _optional_positive("bed_density", self.density)
+        _set(self, "walls", Walls.coerce(self.walls))
+        _set(self, "gravity", check_range("gravity", self.gravity, 0.01, 100.0, unit="m/s^2"))
+        _optional_positive("bed_depth", self.depth)
+        _optional_positive("bed_width", self.width)
+        _optional_positive("settle_time", self.settle_time, allow_zero=True)
+
+
+@dataclass(frozen=True, repr=False)
+class Resolution(_Spec):
+    """How finely the grains and the grid resolve the case.
+
+    cell_size : grid spacing [m]; None = body diameter / 16.
+    particles_per_cell : material points per cell along each axis (1-4).
+    cfl : time step as a fraction of the cell crossing time of the fastest wave (<= 0.5).
+    contact : grid contact scheme (:class:`~terradyn.mpm.bodies.ContactScheme`), ``"two-field"``
+        (bodies need no thickness) or the legacy ``"cover"``.
+    min_cells_across : the fewest cells accepted across the body's diameter (None: 6 for intrusions,
+        8 for wheels).
+    """
+
+    cell_size: float | None = None
+    particles_per_cell: int = 2
+    cfl: float = 0.3
+    contact: ContactScheme | str = ContactScheme.TWO_FIELD
+    min_cells_across: int | None = None
+
+    def __post_init__(self) -> None:
+        _optional_positive("cell_size", self.cell_size)
+        ppc = _integer("particles_per_cell", self.particles_per_cell, 1, 4, "1, 2, 3 or 4 per direction")
+        _set(self, "particles_per_cell", ppc)
+        hint = "explicit MPM is stable for cfl <= 0.5"
+        _set(self, "cfl", check_range("cfl", self.cfl, 1e-3, 0.5, hint=hint))
+        _set(self, "contact", ContactScheme.coerce(self.contact))
+        if self.min_cells_across is not None:
+            n = _integer("min_cells_across", self.min_cells_across, 2, None, "an integer >= 2")
+            _set(self, "min_cells_across", n)
+
+
+@dataclass(frozen=True, repr=False)
+class Outputs(_Spec):
+    """What a run writes and reports besides its result; none of it changes the physics.
+
+    record_interval : simulated time [s] per recorded row (forces are averaged over it); or, for
+        intrusions, ``record_spacing`` [m] of travel per row (default a quarter cell of travel;
+        wheels: duration / 200). Give at most one.
+    snapshot_dir : folder for particle NetCDF snapshots (fields extra), written every
+        ``snapshot_interval`` [s] (wheels, default duration / 20) or ``snapshot_spacing`` [m] of
+        travel (intrusions, default 4 cells).
+    checkpoint_path, checkpoint_interval, resume : checkpoint file (.npz), wall-clock seconds between
+        checkpoints, and whether to continue the run saved there (it must exist).
+    progress : callable ``(simulated_time_s, fraction_done)``.
+    frame_count : light copies of the state kept during the motion (``result.frames``), 0-2000.
+    """
+
+    record_interval: float | None = None
+    record_spacing: float | None = None
+    snapshot_dir: Path | None = None
+    snapshot_interval: float | None = None
+    snapshot_spacing: float | None = None
+    checkpoint_path: Path | None = None
+    checkpoint_interval: float = 60.0
+    resume: bool = False
+    progress: Callable[[float, float], None] | None = None
+    frame_count: int = 0
+
+    def __post_init__(self) -> None:
+        for name in ("record_interval", "record_spacing", "snapshot_interval", "snapshot_spacing"):
+            _optional_positive(name, getattr(self, name))
+        for a, b in (("record_spacing", "record_interval"), ("snapshot_spacing", "snapshot_interval")):
+            if getattr(self, a) is not None and getattr(self, b) is not None:
+                raise InputError(a, getattr(self, a), f"None when {b} is given", "give one of them")
+        _set(self, "snapshot_dir", _path("snapshot_dir", self.snapshot_dir))
+        _set(self, "checkpoint_path", _path("checkpoint_path", self.checkpoint_path))
+        _set(self, "checkpoint_interval", check_positive("checkpoint_interval", self.checkpoint_interval))
+        if not isinstance(self.resume, bool):
+            raise InputError("resume", self.resume, "True or False")
+        if self.resume and self.checkpoint_path is None:
+            raise InputError("resume", True, "resume together with checkpoint_path", "give the file")
+        if self.progress is not None and not callable(self.progress):
+            raise InputError(
+                "progress", self.progress, "a callable (simulated_time_s, fraction_done) or None"
+            )
+        _set(
+            self, "frame_count", _integer("frame_count", self.frame_count, 0, 2000, "an integer in [0, 2000]")
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class Stroke(_Spec):
+    """Run length of an intrusion: the body moves until its reference point has passed the
+    ``averaging_window`` [m] centred on the report depth (the summary averages over it; None:
+    ``max(4 cell_size, 0.2 depth)``)."""
+
+    averaging_window: float | None = None
+
+    def __post_init__(self) -> None:
+        _optional_positive("averaging_window", self.averaging_window)
+
+
+@dataclass(frozen=True, repr=False)
+class Drive(_Spec):
+    """Run length of a wheel: ``sink_time`` [s] sinking under the load (None: ``3 sqrt(reach / g)``),
+    then ``duration`` [s] of driving (None: 3 rad of rotation, ``3 / |omega|``; torque-driven
+    ``20 sqrt(reach / g)``); the summary averages the last ``average_fraction`` (0.05-1) of the
+    drive."""
+
+    sink_time: float | None = None
+    duration: float | None = None
+    average_fraction: float = 0.5
+
+    def __post_init__(self) -> None:
+        _optional_positive("sink_time", self.sink_time, allow_zero=True)
+        _optional_positive("duration", self.duration)
+        _set(self, "average_fraction", check_range("average_fraction", self.average_fraction, 0.05, 1.0))
+
+
+#: the flat keywords of the run functions before specs: keyword -> (spec argument, field)
+LEGACY: dict[str, tuple[str, str]] = {
+    "packing": ("bed", "packing"),
+    "bed_density": ("bed", "density"),
+    "walls": ("bed", "walls"),
+    "gravity": ("bed", "gravity"),
+    "bed_depth": ("bed", "depth"),
+    "bed_width": ("bed", "width"),
+    "bed_length": ("bed", "width"),
+    "settle_time": ("bed", "settle_time"),
+    "cell_size": ("resolution", "cell_size"),
+    "particles_per_cell": ("resolution", "particles_per_cell"),
+    "cfl": ("resolution", "cfl"),
+    "contact": ("resolution", "contact"),
+    "min_cells_across": ("resolution", "min_cells_across"),
+    "record_interval": ("outputs", "record_interval"),
+    "record_spacing": ("outputs", "record_spacing"),
+    "snapshot_dir": ("outputs", "snapshot_dir"),
+    "snapshot_interval": ("outputs", "snapshot_interval"),
+    "snapshot_spacing": ("outputs", "snapshot_spacing"),
+    "checkpoint_path": ("outputs", "checkpoint_path"),
+    "checkpoint_interval": ("outputs", "checkpoint_interval"),
+    "resume": ("outputs", "resume"),
+    "progress": ("outputs", "progress"),
+    "frame_count": ("outputs", "frame_count"),
+    "averaging_window": ("stroke", "averaging_window"),
+    "sink_time": ("drive", "sink_time"),
+    "duration": ("drive", "duration"),
+    "average_fraction": ("drive", "average_fraction"),
+}
+
+#: keywords that override single parameters of the material's continuum model
+MODEL_OVERRIDES = (
+    "youngs_modulus",
+    "poisson_ratio",
+    "friction_coefficient",
+    "surface_friction",
+    "rate_dependent",
+)
+
+
+def apply_legacy(
+    function: str,
+    legacy: Mapping[str, Any],
+    specs: Mapping[str, Any],
+    *,
+    exclude: frozenset[str] = frozenset(),
+) -> tuple[dict[str, Any], dict[str, Any]]:
+    """Fold the flat keywords ``legacy`` of ``function`` into its ``specs`` (argument name -> spec).
+
+    Returns the updated specs and the model overrides (:data:`MODEL_OVERRIDES`). A keyword that is
+    neither, belongs to a spec ``function`` does not take, or is in ``exclude`` raises TypeError as
+    Python does; so does a keyword given beside a non-default spec of its own (say ``cell_size=``
+    with ``resolution=Resolution(...)``): give one or the other. A bad value raises
+    :class:`InputError` naming the keyword.
+    """
+    overrides: dict[str, Any] = {}
+    changes: dict[str, dict[str, tuple[str, Any]]] = {}
+    for name, value in legacy.items():
+        if name in MODEL_OVERRIDES:
+            overrides[name] = value
+            continue
+        target = LEGACY.get(name)
+        if target is None or target[0] not in specs or name in exclude:
+            raise TypeError(f"{function}() got an unexpected keyword argument {name!r}")
+        changes.setdefault(target[0], {})[target[1]] = (name, value)
+    out = dict(specs)
+    for arg, fields in changes.items():
+        spec = specs[arg]
+        if spec != type(spec)():
+            names = ", ".join(repr(n) for n, _ in fields.values())
+            raise TypeError(f"{function}() got {names} beside {arg}={spec!r}: set it in the spec instead")
+        try:
+            out[arg] = dataclasses.replace(spec, **{f: v for f, (_, v) in fields.items()})
+        except InputError as exc:
+            for f, (name, _) in fields.items():  # name the keyword the caller wrote
+                if exc.field == spec.message_name(f) and name != exc.field:
+                    raise InputError(name, exc.value, exc.allowed, exc.hint) from None
+            raise
+    return out, overrides
