@@ -24,8 +24,8 @@ def test_replay_example_with_calibration_writes_tables_and_plots(run_cli, tmp_pa
     sets = {(m["set"], m["wheel_type"]) for m in summary["metrics"]}
     assert ("held-out", "smooth") in sets and ("calibration", "grousered") in sets
     names = sorted(p.name for p in out.iterdir())
-    assert names == ["metrics.csv", "parity.png", "replay.json", "residuals_vs_slip.png", "runs.csv"]
-    header = (out / "runs.csv").read_text().splitlines()[0].split(",")
+    assert names == ["metrics.csv", "parity.png", "predictions.csv", "replay.json", "residuals_vs_slip.png"]
+    header = (out / "predictions.csv").read_text().splitlines()[0].split(",")
     assert {"predicted_drawbar_pull_N", "residual_sinkage_m", "std_sinkage_m", "set"} <= set(header)
 
 
@@ -73,3 +73,11 @@ def test_bad_table_gives_one_line_naming_row_and_column(run_cli, tmp_path):
     assert not (tmp_path / "out").exists()
     code, _, err = run_cli("replay", str(tmp_path / "missing.csv"))
     assert code == 1 and len(err.strip().splitlines()) == 1 and "RUNS" in err
+
+
+def test_out_folder_holding_the_table_is_refused_if_an_output_would_overwrite_it(run_cli, tmp_path):
+    table = tmp_path / "predictions.csv"
+    table.write_text(Path(EXAMPLE).read_text())
+    code, _, err = run_cli("replay", str(table), "--out", str(tmp_path))
+    assert code == 1 and "--out" in err and "overwrites the runs table" in err
+    assert table.read_text() == Path(EXAMPLE).read_text()

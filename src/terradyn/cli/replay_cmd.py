@@ -20,7 +20,7 @@ def replay(
     runs: str = typer.Argument(..., help="Runs table (CSV, columns in docs/replay.md)."),
     model: str = typer.Option("rft", "--model", help=f"Terrain model: {_MODELS}."),
     out: str | None = typer.Option(
-        None, "--out", help=OUT_FOLDER_HELP + " runs.csv, metrics.csv, replay.json."
+        None, "--out", help=OUT_FOLDER_HELP + " predictions.csv, metrics.csv, replay.json."
     ),
     calibrate_on: str | None = typer.Option(
         None,
@@ -56,6 +56,8 @@ def replay(
 
     path = input_file("RUNS", runs)
     folder = out_folder("--out", out)
+    if folder is not None and path is not None:
+        _check_not_input(folder, path, out)
     if plot and folder is None:
         raise InputError("--plot", "set", "--out DIR as well (the plots are written into it)")
     if workers is not None and not 1 <= workers <= 256:
@@ -95,6 +97,23 @@ def replay(
             None,
             title=f"replay {spec.name}: {summary['replayed_runs']}/{len(table)} runs",
         )
+
+
+#: the files --out DIR gets
+OUTPUT_NAMES = (
+    "predictions.csv", "metrics.csv", "replay.json", "parity.png", "residuals_vs_slip.png",
+    "residuals_vs_slip_angle.png",
+)  # fmt: skip
+
+
+def _check_not_input(folder: Path, table: Path, text: str | None) -> None:
+    """Refuse an output folder where a file terradyn writes is the runs table itself."""
+    target = table.resolve()
+    for name in OUTPUT_NAMES:
+        if (folder / name).resolve() == target:
+            raise InputError(
+                "--out", text, "a folder where no output overwrites the runs table", f"{name} is RUNS"
+            )
 
 
 def _calibrate_on(text: str | None) -> float | str | None:
@@ -149,7 +168,7 @@ def _write(folder: Path, result: Any, summary: dict[str, Any], plot: bool) -> No
     from ..io import OutputFormat as Fmt
     from ..io import atomic_write_text, format_output, save_figure
 
-    atomic_write_text(folder / "runs.csv", format_output(result.runs, Fmt.csv), field_name="--out")
+    atomic_write_text(folder / "predictions.csv", format_output(result.runs, Fmt.csv), field_name="--out")
     if result.metrics:
         atomic_write_text(folder / "metrics.csv", format_output(result.metrics, Fmt.csv), field_name="--out")
     text = json.dumps(format_json(summary), indent=2) + "\n"
