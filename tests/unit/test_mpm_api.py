@@ -61,7 +61,7 @@ def test_shipped_media_have_continuum_parameters(name):
         (dict(packing="fluffy"), "packing"),
         (dict(bed_density=1400.0), "bed_density"),
         (dict(bed_depth=0.06), "bed_depth"),
-        (dict(walls="sticky"), "wall.kind"),
+        (dict(walls="sticky"), "walls"),
     ],
 )
 def test_run_intrusion_validates_inputs(kwargs, field):

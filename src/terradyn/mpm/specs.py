@@ -25,6 +25,7 @@ import dataclasses
 import numbers
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from enum import Enum
 from pathlib import Path
 from typing import Any, ClassVar, TypeVar
 
@@ -63,11 +64,20 @@ class _Spec:
     def __repr__(self) -> str:
         default = type(self)()
         parts = [
-            f"{f.name}={getattr(self, f.name)!r}"
+            f"{f.name}={_show(getattr(self, f.name))}"
             for f in dataclasses.fields(self)  # type: ignore[arg-type]
             if getattr(self, f.name) != getattr(default, f.name)
         ]
         return f"{type(self).__name__}({', '.join(parts)})"
+
+
+def _show(value: Any) -> str:
+    """A field value as one would type it (enums by value, paths as strings)."""
+    if isinstance(value, Enum):
+        return repr(value.value)
+    if isinstance(value, Path):
+        return repr(str(value))
+    return repr(value)
 
 
 def _set(spec: object, name: str, value: Any) -> None:
@@ -129,7 +139,11 @@ class Bed(_Spec):
         except ValueError:
             raise InputError("packing", self.packing, "'consolidated' or 'unconsolidated'") from None
         _optional_positive("bed_density", self.density)
-        _set(self, "walls", Walls.coerce(self.walls))
+        try:
+            _set(self, "walls", Walls.coerce(self.walls))
+        except InputError:
+            kinds = "a Walls, a Wall or one of 'free-slip', 'no-slip', 'frictional'"
+            raise InputError("walls", self.walls, kinds) from None
         _set(self, "gravity", check_range("gravity", self.gravity, 0.01, 100.0, unit="m/s^2"))
         _optional_positive("bed_depth", self.depth)
         _optional_positive("bed_width", self.width)
