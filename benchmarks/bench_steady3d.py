@@ -12,7 +12,8 @@ runs Brent's method on the facets that can touch in the bracket and finds the co
 the cylinder's curve and the wall time per curve and per point, warm numba cache, with the thread
 count printed on the first line (``TERRADYN_THREADS`` sets it).
 
-Then the cost of one ``terradyn wheel steady --model rft3d`` call, where a 0.002-0.3 s solve sits in
+Then the visibility culling of those meshes (and of the cylinder with a hidden hub inside), and the
+cost of one ``terradyn wheel steady --model rft3d`` call, where a 0.002-0.3 s solve sits in
 seconds of process start-up: a fresh process times each phase (imports of typer, numpy, numba, the
 terradyn CLI, numba's first cached-kernel load (its target registries, which import scipy.linalg for
 the BLAS check), mesh reading (NumPy STL reader, and trimesh for comparison), axle fit, period
@@ -165,7 +166,29 @@ def main() -> None:
     dp = np.array([r.drawbar_pull_N for r in rows])
     print(f"grousered: drawbar pull {dp.min():.2f} .. {dp.max():.2f} N over the slips")
     _report("grousered, 4 phases", grousered, elapsed)
+    culling(cylinder, grousered)
     cli_cost()
+
+
+def culling(cylinder: TriangleMesh, grousered: TriangleMesh) -> None:
+    """Wall time of :func:`wheel_contact_mesh` (visibility culling), warm numba cache."""
+    from terradyn.locomotion.steady3d import wheel_contact_mesh
+
+    hub = wheel_cylinder(0.1, 0.1, circumferential_resolution=200, axial_resolution=4)
+    wheel_contact_mesh(hub)  # load the kernel
+    for name, mesh in (
+        ("cylinder", cylinder),
+        ("grousered", grousered),
+        ("cylinder + hidden hub", cylinder.merged(hub)),
+    ):
+        for angle in (0.0, SLIP_ANGLE):
+            t0 = time.perf_counter()
+            kept = wheel_contact_mesh(mesh, slip_angle=angle)
+            elapsed = time.perf_counter() - t0
+            print(
+                f"culling {name}, slip angle {math.degrees(angle):g} deg: {mesh.facet_count} -> "
+                f"{kept.facet_count} facets in {elapsed:.3f} s"
+            )
 
 
 if __name__ == "__main__":
