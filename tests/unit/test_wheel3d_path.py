@@ -14,6 +14,7 @@ from terradyn.geometry3d import (
     Pose3D,
     TriangleMesh,
     Twist3D,
+    box,
     fit_wheel_mesh,
     plate,
     wheel_cylinder,
@@ -274,3 +275,18 @@ def test_numpy_stl_reader_matches_trimesh(tmp_path, lugged):
     assert _read_closed_stl(open_path) is None
     with pytest.raises(InputError):
         load_mesh(open_path)
+
+
+def test_a_wheel_that_is_not_round_needs_its_axle():
+    square = box(0.1, 0.05, 0.1, facet_size=0.005)  # a square "wheel" about body y, 0.1 m across
+    assert fit_wheel_mesh(square).roundness == pytest.approx(1.0 - math.sqrt(0.5), abs=0.02)
+    coarse = wheel_cylinder(R, W, circumferential_resolution=24, axial_resolution=1, radial_resolution=1)
+    assert wheel_from_mesh(coarse)[1].roundness < 0.01  # a 24-gon: sectors without a vertex are skipped
+    with pytest.raises(InputError) as info:
+        wheel_from_mesh(square.translated((0.3, 0.0, 0.2)))
+    assert info.value.field == "axle" and "--center" in str(info.value)
+    placed, _ = wheel_from_mesh(square.translated((0.3, 0.0, 0.2)), center=(0.3, 0.0, 0.2))
+    np.testing.assert_allclose(placed.vertices, square.vertices, atol=1e-15)
+    with pytest.raises(InputError) as info:
+        wheel_from_mesh(square.translated((0.3, 0.0, 0.2)), center=(0.3, 0.0, 0.15))  # half a side off
+    assert info.value.field == "center"

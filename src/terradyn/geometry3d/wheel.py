@@ -10,9 +10,10 @@ module maps a mesh there:
    algebraic least-squares circle through the outermost vertex of each 5 deg sector (refitted three
    times about the new center; the surface centroid when it agrees within 2 % of the radius), along
    the axle the middle of the mesh's extent;
-4. check: the radius must lie in [1 mm, 5 m], the width in [0.1 mm, 10 m], the outline across the
-   axle must be round (outer radius varying by at most 35 % with angle; else the axle is probably
-   another axis), and a given center must lie within 25 % of the radius of the fitted axle.
+4. check: the radius must lie in [1 mm, 5 m], the width in [0.1 mm, 10 m]; a fitted axle needs an
+   outline across it that is round (outer radius varying by at most 25 % with angle; else the axle
+   is probably another axis); a given centre (any wheel shape, round or not) must lie within 25 % of
+   the radius of the mesh's surface centroid across the axle.
 
 The fit reports the detected radius, width, center and roundness (:class:`WheelMeshFit`).
 """
@@ -42,9 +43,10 @@ __all__ = [
 #: plausible wheel sizes [m]
 RADIUS_RANGE = (1e-3, 5.0)
 WIDTH_RANGE = (1e-4, 10.0)
-#: the outermost radius over any 5 deg sector may fall this fraction below the largest (grousers)
-ROUNDNESS_LIMIT = 0.35
-#: a given center may lie this fraction of the radius from the fitted axle
+#: the outermost radius over any 5 deg sector may fall this fraction below the largest (grousers up to a
+#: third of the rim radius; a square is 0.29, a wheel seen across a wrong axis typically over 0.4)
+ROUNDNESS_LIMIT = 0.25
+#: a given center may lie this fraction of the radius from the surface centroid
 CENTER_LIMIT = 0.25
 
 
@@ -116,15 +118,15 @@ def _circle_fit(points: NDArray[np.float64]) -> tuple[float, float, float]:
 def _outline(
     pts: NDArray[np.float64], cx: float, cy: float, bins: int = 72
 ) -> tuple[NDArray[np.float64], float]:
-    """The outermost point of each of ``bins`` angular sectors about (cx, cy), and the roundness
-    1 - (smallest sector radius) / (largest) [-] (1 when a sector is empty)."""
+    """The outermost point of each of ``bins`` angular sectors about (cx, cy) that holds a vertex, and
+    the roundness 1 - (smallest sector radius) / (largest) over those [-] (1 if fewer than 8)."""
     d = pts - np.array([cx, cy])
     rho = np.hypot(d[:, 0], d[:, 1])
     sector = ((np.arctan2(d[:, 1], d[:, 0]) + math.pi) / (2.0 * math.pi) * bins).astype(np.int64) % bins
     order = np.lexsort((rho, sector))
     last = np.nonzero(np.diff(np.append(sector[order], bins)))[0]
     best = order[last]
-    if best.size < bins:
+    if best.size < 8:  # too few sectors hold a vertex to tell
         return pts[best], 1.0
     r = rho[best]
     return pts[best], float(1.0 - r.min() / max(r.max(), 1e-300))
@@ -227,14 +229,19 @@ def wheel_from_mesh(
         if c.shape != (3,) or not np.all(np.isfinite(c)):
             raise InputError("center", center, "three finite coordinates X,Y,Z in the mesh's units")
     if check:
-        _check_plausible(fit, u, a, None if center is None else c, center)
+        _check_plausible(fit, u, a, None if center is None else c, center, scaled)
     rot = _TO_BODY[a]
     placed = TriangleMesh((scaled.vertices - c) @ rot.T, scaled.faces)
     return placed, fit
 
 
 def _check_plausible(
-    fit: WheelMeshFit, units: MeshUnits, axle: Axle, center: NDArray[np.float64] | None, given: object
+    fit: WheelMeshFit,
+    units: MeshUnits,
+    axle: Axle,
+    center: NDArray[np.float64] | None,
+    given: object,
+    mesh: TriangleMesh,
 ) -> None:
     r, w = fit.radius_m, fit.width_m
     lo, hi = RADIUS_RANGE
@@ -250,26 +257,34 @@ def _check_plausible(
             "axle", axle.value, f"the axis along which the wheel is {WIDTH_RANGE[0] * 1e3:g} mm to "
             f"{WIDTH_RANGE[1]:g} m wide (it is {w:.4g} m along {axle.value})",
         )  # fmt: skip
-    if fit.roundness > ROUNDNESS_LIMIT:
-        raise InputError(
-            "axle", axle.value,
-            f"the axis the wheel turns about (across {axle.value} its outline is not round: the outer "
-            f"radius varies by {fit.roundness:.0%} with angle, at most {ROUNDNESS_LIMIT:.0%} is accepted)",
-            "give the axle axis with --axle x|y|z",
-        )  # fmt: skip
-    if center is not None:
-        k = "xyz".index(axle.value)
-        off = np.asarray(center) - np.asarray(fit.center_m)
-        off[k] = 0.0
-        dist = float(np.linalg.norm(off))
-        if dist > CENTER_LIMIT * r:
-            fitted = ", ".join(f"{v / units.metres:.6g}" for v in fit.center_m)
+    k = "xyz".index(axle.value)
+    if center is None:
+        if fit.roundness > ROUNDNESS_LIMIT:
             raise InputError(
-                "center", given,
-                f"an axle within {CENTER_LIMIT:.0%} of the radius of the fitted axle "
-                f"({fitted}) {units.value}; it is {dist / r:.2f} radii away",
-                "omit it to center automatically",
+                "axle", axle.value,
+                f"the axis the wheel turns about (across {axle.value} its outline is not round: the "
+                f"outer radius varies by {fit.roundness:.0%} with angle, at most {ROUNDNESS_LIMIT:.0%})",
+                "give the axle axis with --axle x|y|z; a wheel that is not round needs --center too",
             )  # fmt: skip
+        return
+    # A given axle: it must pass near the surface centroid (every wheel turning about its axle has it
+    # there, round or not); the fitted radius is about the given axle here.
+    plane = [i for i in range(3) if i != k]
+    area = float(mesh.areas.sum())
+    g = (mesh.centroids * mesh.areas[:, None]).sum(axis=0) / max(area, 1e-300)
+    rho = np.hypot(
+        mesh.vertices[:, plane[0]] - center[plane[0]], mesh.vertices[:, plane[1]] - center[plane[1]]
+    )
+    radius = float(rho.max())
+    dist = float(np.hypot(g[plane[0]] - center[plane[0]], g[plane[1]] - center[plane[1]]))
+    if not RADIUS_RANGE[0] <= radius <= RADIUS_RANGE[1] or dist > CENTER_LIMIT * radius:
+        cg = ", ".join(f"{v / units.metres:.6g}" for v in g)
+        raise InputError(
+            "center", given,
+            f"an axle within {CENTER_LIMIT:.0%} of the wheel's radius from its surface centroid "
+            f"({cg}) {units.value}; it is {dist / max(radius, 1e-300):.2f} radii away",
+            "omit it to centre on the fitted axle",
+        )  # fmt: skip
 
 
 def load_wheel_mesh(
