@@ -6,6 +6,7 @@ import dataclasses
 import inspect
 import json
 import math
+import pickle
 import re
 
 import numpy as np
@@ -98,6 +99,7 @@ def test_specs_are_frozen_hashable_and_read_back_from_their_repr():
             spec.cell_size = 1.0  # type: ignore[misc, attr-defined]
         assert eval(repr(spec), names) == spec  # the repr is what one would type
         assert hash(spec) == hash(eval(repr(spec), names))
+        assert pickle.loads(pickle.dumps(spec)) == spec  # specs travel to worker processes
     assert repr(Bed()) == "Bed()" and repr(Resolution(cell_size=0.01)) == "Resolution(cell_size=0.01)"
     assert len({Bed(), Bed(), Bed(walls="free-slip"), Bed(depth=0.1)}) == 2  # free-slip is the default
     assert Resolution(cell_size=0.01).replace(cfl=0.2) == Resolution(cell_size=0.01, cfl=0.2)

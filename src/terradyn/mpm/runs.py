@@ -1,8 +1,12 @@
 """Library entry points: :func:`run_intrusion` and :func:`run_wheel` with frozen results.
 
-All inputs are SI (angles in rad). Every bad input raises :class:`~terradyn.errors.InputError` naming
-the field. Forces are the grains' force on the body [N] (the 2D per-width value times the body width);
-torques are about +y through the body's reference point [N m].
+All inputs are SI (angles in rad). The bed, the resolution, the outputs and the run length come as
+specs (:mod:`terradyn.mpm.specs`: :class:`Bed`, :class:`Resolution`, :class:`Outputs`, :class:`Stroke`,
+:class:`Drive`); shared helpers here build the bed, the settling phases and the runner from them, so a
+new case is a new spec and a short function. Every bad input raises
+:class:`~terradyn.errors.InputError` naming the field. Forces are the grains' force on the body [N]
+(the 2D per-width value times the body width); torques are about +y through the body's reference
+point [N m].
 """
 
 from __future__ import annotations
