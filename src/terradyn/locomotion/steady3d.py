@@ -862,8 +862,10 @@ def sweep_3d(
     surface_level: float = 0.0,
     leading_edge: bool = True,
     surface_friction: float | None = None,
+    slip_definition: SlipDefinition | str = SlipDefinition.CLASSIC,
 ) -> TableResult:
-    """:func:`wheel_steady_3d` over every load [N] x slip [-] x slip angle [rad].
+    """:func:`wheel_steady_3d` over every load [N] x slip [-] x slip angle [rad] (|angle| < pi/2; slips
+    in ``slip_definition``).
 
     Columns: load_N, slip, slip_angle_rad, solved, then sinkage_m, drawbar_pull_N, side_force_N,
     vertical_force_N, drive_torque_Nm, power_W, aligning_moment_Nm, overturning_moment_Nm,
@@ -886,7 +888,7 @@ def sweep_3d(
                         mesh, medium, float(load), float(slip), slip_angle=float(angle), omega=omega,
                         nominal_radius=nominal_radius, phase_count=phase_count, period=period,
                         surface_level=surface_level, leading_edge=leading_edge,
-                        surface_friction=surface_friction,
+                        surface_friction=surface_friction, slip_definition=slip_definition,
                     )  # fmt: skip
                     vals: tuple[Any, ...] = (True, *(getattr(r, k) for k in _SWEEP_VALUES))
                 except SolverError as exc:
