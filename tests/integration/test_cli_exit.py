@@ -232,7 +232,8 @@ def test_checkpoint_flags_are_checked_before_the_run(run_cli, tmp_path):
 def test_snapshots_of_a_stopped_run_go_unless_it_can_resume(run_cli, tmp_path, monkeypatch, with_checkpoint):
     import terradyn.mpm as mpm
 
-    def stopped_run(*args, snapshot_dir, checkpoint_path, **kw):
+    def stopped_run(*args, outputs, **kw):
+        snapshot_dir, checkpoint_path = outputs.snapshot_dir, outputs.checkpoint_path
         snapshot_dir.mkdir(exist_ok=True)
         (snapshot_dir / "particles_000000010.nc").write_bytes(b"x")
         if checkpoint_path is not None:
