@@ -42,9 +42,16 @@ __all__ = [
 GRID_PAD = 2
 #: Largest allowed CFL number (c + |v|) dt / h checked at run time.
 CFL_LIMIT = 0.6
-#: Below this many particles the step loop runs on one thread: the parallel regions of a step cost
-#: more than they save, and far more when other processes compete for the cores.
-PARALLEL_MIN_PARTICLES = 40_000
+#: Below this many particles the step loop runs on one thread (the parallel regions of a step cost
+#: about as much as they save). From this size up, a runner given several threads times its chunks
+#: and keeps the faster of one thread and all of them, trying the other every
+#: :data:`THREAD_PROBE_EVERY` chunks: on a machine whose cores other processes keep busy the kernel
+#: gives the run a fixed share of the CPU (per session), a second thread then adds only its
+#: synchronisation cost, and one thread wins. Results do not depend on the thread count beyond
+#: rounding (benchmarks/bench_mpm.py has the figures).
+PARALLEL_MIN_PARTICLES = 10_000
+#: Chunks between two timed trials of the thread count not in use (see PARALLEL_MIN_PARTICLES).
+THREAD_PROBE_EVERY = 8
 
 ProgressCallback = Callable[[float, float], None]
 
@@ -152,6 +159,13 @@ class BedGrid:
 
     The left wall is at ``x_left`` [m]; ``air`` [m] of empty grid lies above the surface. Nodes are
     ``cell_size`` [m] apart with :data:`GRID_PAD` nodes outside each wall.
+
+    The box is snapped outwards to the grid: the walls move to the nearest multiples of ``cell_size``
+    that enclose the requested box and the depth is rounded up to whole cells, so that the nodes lie on
+    x = k h and the free surface on the node line z = 0 whatever the bed size. (Without it a depth that
+    is not a whole number of cells put the surface up to half a cell above z = 0, and a bed width change
+    shifted the grid under the body by half a cell: each changed a 60 mm plate's force at 10 mm cells
+    by 12 %, which had read as a wall effect.)
     """
 
     width: float
@@ -166,6 +180,12 @@ class BedGrid:
         check_positive("bed_width", self.width)
         check_positive("bed_depth", self.depth)
         check_positive("air_height", self.air, allow_zero=True)
+        h = self.cell_size
+        left = math.floor(self.x_left / h + 1e-9)
+        right = math.ceil((self.x_left + self.width) / h - 1e-9)
+        object.__setattr__(self, "x_left", left * h)
+        object.__setattr__(self, "width", (right - left) * h)
+        object.__setattr__(self, "depth", math.ceil(self.depth / h - 1e-9) * h)
         for name, value in (("bed_width", self.width), ("bed_depth", self.depth)):
             if value < 4 * self.cell_size:
                 raise InputError(
@@ -378,6 +398,8 @@ class Runner:
     frames: list[dict[str, np.ndarray]] = field(default_factory=list)
     _last_checkpoint: float = field(default=0.0, repr=False)
     _saved_step: int = field(default=-1, repr=False)  # step of the checkpoint on disk (-1: none)
+    _step_seconds: dict[int, float] = field(default_factory=dict, repr=False)  # by thread count
+    _chunks_timed: int = field(default=-1, repr=False)  # -1: the first (warm-up) chunk is not timed
 
     ROW = (
         "phase",
@@ -467,15 +489,37 @@ class Runner:
         self.prepare()
         forces = np.zeros((n, 3))
         threads = numba.get_num_threads()
-        if len(self.particles) < PARALLEL_MIN_PARTICLES:
-            numba.set_num_threads(1)
+        use = self._thread_count(threads)
+        numba.set_num_threads(use)
+        start = time.perf_counter()
         try:
             self._advance(n, damping, forces)
         finally:
             numba.set_num_threads(threads)
+        self._time_chunk(use, (time.perf_counter() - start) / max(1, n))
         self.step += n
         self._check(n)
         return forces
+
+    def _thread_count(self, threads: int) -> int:
+        """Threads for the next chunk: 1 below :data:`PARALLEL_MIN_PARTICLES`, else the faster so far
+        of 1 and ``threads`` (each is tried first; the slower one again every THREAD_PROBE_EVERY)."""
+        if threads <= 1 or len(self.particles) < PARALLEL_MIN_PARTICLES:
+            return 1
+        seen = self._step_seconds
+        for count in (threads, 1):
+            if count not in seen:
+                return count
+        best, other = (1, threads) if seen[1] <= seen[threads] else (threads, 1)
+        return other if self._chunks_timed % THREAD_PROBE_EVERY == THREAD_PROBE_EVERY - 1 else best
+
+    def _time_chunk(self, threads: int, seconds_per_step: float) -> None:
+        """Record the wall time per step of a chunk run on ``threads`` (the first chunk compiles)."""
+        self._chunks_timed += 1
+        if self._chunks_timed == 0:
+            return
+        old = self._step_seconds.get(threads)
+        self._step_seconds[threads] = seconds_per_step if old is None else 0.5 * (old + seconds_per_step)
 
     def run(self) -> None:
         """Run all phases from the current step to the end; the last state is checkpointed.

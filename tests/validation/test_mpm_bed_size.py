@@ -1,0 +1,50 @@
+"""Bed size and grid alignment: the bed snaps to the grid, so a body meets the same grid whatever the
+bed size (checked without a run), and the measured wall/bed-depth rule of
+:func:`terradyn.mpm.run_intrusion` leaves the force within 3 % when the walls or the floor move 1.5
+times further away (slow: several plate runs).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from mpm_reference import MODEL
+from terradyn import materials
+from terradyn.geometry import Plate
+from terradyn.mpm import BedGrid, run_intrusion
+from terradyn.mpm.solver import GRID_PAD, make_bed
+
+
+def test_bed_grid_snaps_outwards_to_whole_cells():
+    h = 0.01
+    grid = BedGrid(0.4234, 0.2055, 0.03, h, -0.2117)
+    assert grid.x_left == pytest.approx(-0.22, abs=1e-12)
+    assert grid.x_right == pytest.approx(0.22, abs=1e-12)  # encloses -0.2117 + 0.4234 = 0.2117
+    assert grid.depth == pytest.approx(0.21, abs=1e-12)
+    x0, z0 = grid.origin
+    # nodes on multiples of h, and the node line z = 0 is the free surface
+    assert x0 / h == pytest.approx(round(x0 / h), abs=1e-9)
+    assert (0.0 - z0) / h == pytest.approx(GRID_PAD + 21, abs=1e-9)
+    particles = make_bed(MODEL, grid, particles_per_cell=2)
+    assert particles.pos[:, 1].max() == pytest.approx(-h / 4, abs=1e-12)  # top row a quarter cell down
+    assert particles.pos[:, 1].min() == pytest.approx(-grid.depth + h / 4, abs=1e-12)
+    # an aligned box is left as it is
+    same = BedGrid(0.42, 0.21, 0.03, h, -0.21)
+    assert (same.width, same.depth, same.x_left) == (pytest.approx(0.42), pytest.approx(0.21), -0.21)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("length", "cell_size"), [(0.06, 0.01), (0.04, 0.005)])
+def test_walls_and_floor_beyond_the_default_rule_change_the_force_by_under_3_percent(length, cell_size):
+    plate, ms = Plate(length, 0.1), materials.get("MS")
+    base = run_intrusion(plate, ms, depth=0.04, cell_size=cell_size)
+    width, depth = base.metadata["bed_width_m"], base.metadata["bed_depth_m"]
+    f0 = base.summary["force_z_N"]
+    assert math.isfinite(f0) and f0 > 0
+    for w, d in [(1.5 * width, depth), (width, 1.5 * depth)]:
+        f = run_intrusion(plate, ms, depth=0.04, cell_size=cell_size, bed_width=w, bed_depth=d)
+        assert f.summary["force_z_N"] == pytest.approx(f0, rel=0.03), (w, d)
+    assert np.isfinite(base.series["force_z_N"]).all()
