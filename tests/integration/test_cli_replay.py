@@ -81,3 +81,11 @@ def test_out_folder_holding_the_table_is_refused_if_an_output_would_overwrite_it
     code, _, err = run_cli("replay", str(table), "--out", str(tmp_path))
     assert code == 1 and "--out" in err and "overwrites the runs table" in err
     assert table.read_text() == Path(EXAMPLE).read_text()
+
+
+def test_a_table_no_run_of_which_the_model_can_replay_is_one_solver_line(run_cli, tmp_path):
+    path = _bad(
+        tmp_path, "run_id,medium,radius_m,width_m,load_N,slip,drawbar_pull_N\na,MS,0.01,0.01,5000,0.1,1\n"
+    )
+    code, stdout, err = run_cli("replay", path)
+    assert code == 3 and stdout == "" and len(err.strip().splitlines()) == 1 and "no run of" in err

@@ -77,14 +77,14 @@ def replay(
             on_done=advance,
         )  # fmt: skip
     failures = result.failures
-    if failures:
-        typer.echo(
-            f"terradyn: {len(failures)} of {len(table)} run(s) not replayed, e.g. {failures[0]}", err=True
-        )
     if all(not r["solved"] for r in result.runs):
         from ..errors import SolverError
 
         raise SolverError(f"no run of {path} could be replayed with {spec.name}: {failures[0]}")
+    if failures:
+        typer.echo(
+            f"terradyn: {len(failures)} of {len(table)} run(s) not replayed, e.g. {failures[0]}", err=True
+        )
     summary = _summary(result, len(table))
     if folder is not None:
         _write(folder, result, summary, plot)

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError, TerradynError, check_positive
+from ..errors import InputError, TerradynError, check_range
 from .table import QUANTITIES, RunRow, WheelSpec
 
 __all__ = ["MODELS_2D", "MODELS_3D", "REPLAY_MODELS", "Prediction", "ReplayModel", "predict_run"]
@@ -60,7 +60,7 @@ class ReplayModel:
         if key not in REPLAY_MODELS:
             raise InputError("model", self.name, f"one of {list(REPLAY_MODELS)}")
         object.__setattr__(self, "name", key)
-        check_positive("scale", self.scale, allow_zero=False)
+        check_range("scale", self.scale, 1e-6, 1e6)
         if key == "wong-reece" and self.scale != 1.0:
             raise InputError("scale", self.scale, "1 for wong-reece (it has no RFT scale)")
         if key not in _SLIP_SINKAGE:
@@ -73,6 +73,8 @@ class ReplayModel:
             or not (1 <= self.phase_count <= 4096)
         ):
             raise InputError("phase_count", self.phase_count, "an integer in [1, 4096]")
+        if key in _SLIP_SINKAGE:
+            self.slip_sinkage()  # checks the slip-sinkage parameters now, not per run
 
     @property
     def is_3d(self) -> bool:
