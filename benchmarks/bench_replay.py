@@ -5,6 +5,8 @@
   to 0.9, slip angles 0, 45 and 90 deg: 43 x 3 x 3 = 387 runs, load control. The 0 and 45 deg runs
   with omega > 0 and ``1 - V/(omega r)`` >= -1 take the compiled steady solve, the others (locked,
   deep skid, 90 deg) the twist-based solver of ``terradyn.replay.solve``.
+* 3D slip-sinkage RFT (``rft3d-ss``, NumPy-level height field over the compiled facet tractions) on a
+  43-run subset of that table, serially;
 * plane RFT (``rft``) and plane slip-sinkage RFT (``rft-ss``) on the same wheel as a primitive
   (2D, 360 rim elements), 43 slips x 9 loads (12-28 N) = 387 runs.
 
@@ -64,15 +66,24 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "wheel_50k.stl"
         save_mesh(mesh, path)
-        cases = [("rft3d", _table_3d(str(path))), ("rft", _table_2d()), ("rft-ss", _table_2d())]
-        print(f"facets {mesh.facet_count}, runs per table {len(cases[0][1])}, cpu_count {os.cpu_count()}")
-        for model, records in cases:
+        table_3d = _table_3d(str(path))
+        cases = [("rft3d", table_3d, True), ("rft3d-ss", table_3d, False), ("rft", _table_2d(), True),
+                 ("rft-ss", _table_2d(), True)]  # fmt: skip
+        load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+        print(f"facets {mesh.facet_count}, runs per table {len(table_3d)}, cpu_count {os.cpu_count()}, "
+              f"load average {load:.1f}")  # fmt: skip
+        for model, records, whole in cases:
             _time(records[:2], model, "serial", None)  # warm up (mesh read, kernels loaded)
             subset = records[:: len(records) // 43][:43]
             t_serial, _ = _time(subset, model, "serial", None)
+            if not whole:  # the Python-level 3D slip-sinkage path: the subset only
+                print(
+                    f"{model:8s} serial: {len(subset)} runs in {t_serial:.2f} s = {len(subset) / t_serial:.1f} runs/s"
+                )
+                continue
             t_par, solved = _time(records, model, "processes", 2)
             print(
-                f"{model:7s} serial: {len(subset)} runs in {t_serial:.2f} s = "
+                f"{model:8s} serial: {len(subset)} runs in {t_serial:.2f} s = "
                 f"{len(subset) / t_serial:.1f} runs/s | "
                 f"2 processes: {len(records)} runs ({solved} solved) in {t_par:.2f} s = "
                 f"{len(records) / t_par:.1f} runs/s"

@@ -281,12 +281,18 @@ def _values(
 
 
 # ----------------------------------------------------------------------------------------------- 3D
-def _phases_3d(mesh: Any, wheel: WheelSpec, model: ReplayModel) -> np.ndarray:
+@lru_cache(maxsize=64)
+def _mesh_period(wheel: WheelSpec) -> float:
+    """Rotational period [rad] of a mesh wheel, detected once per wheel (it costs more than a solve)."""
     from ..locomotion.steady3d import wheel_period_3d
 
+    return wheel_period_3d(_mesh_3d(wheel))
+
+
+def _phases_3d(mesh: Any, wheel: WheelSpec, model: ReplayModel) -> np.ndarray:
     if wheel.shape == "circular":
         return np.zeros(1)
-    period = 2.0 * math.pi / wheel.grouser_count if wheel.shape == "grousered" else wheel_period_3d(mesh)
+    period = 2.0 * math.pi / wheel.grouser_count if wheel.shape == "grousered" else _mesh_period(wheel)
     if period <= 2.0 * math.pi / _AXISYMMETRIC_ORDER:
         return np.zeros(1)
     return np.arange(model.phase_count) * period / model.phase_count
