@@ -77,9 +77,8 @@ def main() -> None:
             subset = records[:: len(records) // 43][:43]
             t_serial, _ = _time(subset, model, "serial", None)
             if not whole:  # the Python-level 3D slip-sinkage path: the subset only
-                print(
-                    f"{model:8s} serial: {len(subset)} runs in {t_serial:.2f} s = {len(subset) / t_serial:.1f} runs/s"
-                )
+                rate = len(subset) / t_serial
+                print(f"{model:8s} serial: {len(subset)} runs in {t_serial:.2f} s = {rate:.1f} runs/s")
                 continue
             t_par, solved = _time(records, model, "processes", 2)
             print(
