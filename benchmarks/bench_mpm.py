@@ -1,8 +1,19 @@
-"""MPM speed: particle-steps per second of the full granular model, and a plate-intrusion wall time.
+"""MPM speed: particle-steps per second of the full step on 1 and 2 threads, and a plate-intrusion wall time.
 
-Each size is a settled-looking bed (geostatic stress, Dunatunga-Kamrin model, rate-independent) with a
-rigid plate resting in it, advanced by the compiled step loop; the figure is particles x steps / seconds
-after a warm-up. Run: ``python benchmarks/bench_mpm.py [--quick] [--studies]``; ``--studies`` (or
+What is counted: the compiled step loop (:func:`terradyn.mpm._kernels.advance`) on a consolidated bed
+(geostatic stress, Dunatunga-Kamrin model, 2 x 2 particles per 5 mm cell) with a rigid body under the
+default two-field contact; one step is the body geometry (near particles, band nodes), p2g with the
+two grain fields, the grid update with walls, the two-field frictional contact, g2p with the stress
+update, and the particle projection off the body. The figure is particles x steps / wall seconds of
+``Runner._advance`` after a warm-up run (compiled code loaded, caches warm), the median of
+``REPEATS`` runs of at least ``min_time`` s each, 1- and 2-thread runs interleaved. Both use the
+scratch of a ``--threads 2`` run (two p2g grid copies); the thread count is forced, bypassing the
+runner's own choice (:data:`terradyn.mpm.solver.PARALLEL_MIN_PARTICLES`). Bodies: a 5 cm plate at rest
+21 mm deep, and a 65 mm wheel rolling and sinking through the surface (its 164-segment outline makes
+the contact geometry a large part of the step). The 1-minute load average is printed with each row:
+on a shared machine the figures measure the share of the cores this process got.
+
+Run: ``python benchmarks/bench_mpm.py [--quick] [--studies]``; ``--studies`` (or
 ``TERRADYN_BENCH_STUDIES=1`` under ``make bench``) also times the mpm-wheel and mpm-alpha studies at
 their default resolution.
 """
@@ -17,63 +28,99 @@ import numba
 import numpy as np
 
 from terradyn import materials
-from terradyn.geometry import Plate
+from terradyn.geometry import Plate, WheelCircular
 from terradyn.mpm import GranularModel, run_intrusion
 from terradyn.mpm.bodies import BodyState, ContactScheme, body_segments, effective_body
 from terradyn.mpm.solver import BedGrid, Phase, Runner, make_bed, stable_time_step
 
+REPEATS = 3
 
-def _runner(n_particles: int, model: GranularModel, steps: int, contact: str = "two-field") -> Runner:
+
+def _runner(n_particles: int, model: GranularModel, body: str = "plate") -> Runner:
     h = 0.005
     cells = n_particles / 4.0  # 2 x 2 particles per cell
     ncz = max(8, int(np.sqrt(cells / 4.0)))
     ncx = round(cells / ncz)
     grid = BedGrid(ncx * h, ncz * h, 0.05, h, -0.5 * ncx * h)
     p = make_bed(model, grid)
-    plate = effective_body(Plate(0.05, 0.1), h, contact)
-    seg = body_segments(plate, h)
-    body = BodyState(
-        seg=seg,
-        pose=np.array([0.0, -0.02, 0.0]),
-        twist=np.zeros(3),
-        free=np.zeros(2, dtype=np.bool_),
+    if body == "plate":
+        shape = effective_body(Plate(0.05, 0.1), h, ContactScheme.TWO_FIELD)
+        pose, twist = [0.0011, -0.0213, 0.0], [0.0, 0.0, 0.0]  # off the grid lines
+    else:  # a wheel rolling forward and sinking, prescribed (no body dynamics)
+        shape = WheelCircular(0.065, 0.1)
+        pose, twist = [0.0, 0.045, 0.0], [0.02, -0.01, -1.0]
+    state = BodyState(
+        seg=body_segments(shape, h),
+        pose=np.array(pose),
+        twist=np.array(twist),
+        free=np.zeros(3, dtype=np.bool_),
         mass=1.0,
-        load=np.zeros(2),
+        load=np.zeros(3),
         friction=0.4,
         width=0.1,
-        contact=ContactScheme(contact),
+        contact=ContactScheme.TWO_FIELD,
     )
     dt = stable_time_step(model, h)
-    return Runner(model, grid, p, body, dt, [Phase("bench", steps)], record_every=steps)
+    runner = Runner(model, grid, p, state, dt, [Phase("bench", 1)], record_every=1)
+    threads = numba.get_num_threads()
+    numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
+    try:
+        runner.prepare()  # scratch as for --threads 2
+    finally:
+        numba.set_num_threads(threads)
+    return runner
+
+
+def _timed(runner: Runner, steps: int, threads: int) -> float:
+    """Wall seconds of ``steps`` steps on ``threads`` threads (the state advances)."""
+    forces = np.zeros((steps, 3))
+    old = numba.get_num_threads()
+    numba.set_num_threads(threads)
+    try:
+        t0 = time.perf_counter()
+        runner._advance(steps, 0.0, forces)
+        return time.perf_counter() - t0
+    finally:
+        numba.set_num_threads(old)
 
 
 def particle_steps_per_second(
-    n_particles: int, model: GranularModel, min_time: float = 3.0, contact: str = "two-field"
-) -> tuple[int, float]:
-    """(particles, particle-steps/s) of the compiled step loop on a bed of about ``n_particles`` with
-    a plate resting in it under ``contact``."""
-    _runner(n_particles, model, 2, contact).run()  # warm-up / compile
-    steps = 20
-    while True:
-        r = _runner(n_particles, model, steps, contact)
-        t0 = time.perf_counter()
-        r.run()
-        dt = time.perf_counter() - t0
-        if dt > min_time or steps > 100000:
-            return len(r.particles), len(r.particles) * steps / dt
-        steps = int(steps * max(2.0, 1.2 * min_time / max(dt, 1e-3)))
+    n_particles: int, model: GranularModel, body: str = "plate", min_time: float = 2.0
+) -> tuple[int, dict[int, float]]:
+    """(particles, {threads: median particle-steps/s}) for 1 and 2 threads on a bed of about
+    ``n_particles`` with ``body`` ("plate" or "wheel") in it (see the module docstring)."""
+    counts = [1, 2] if numba.config.NUMBA_NUM_THREADS >= 2 else [1]
+    runner = _runner(n_particles, model, body)
+    for t in counts:
+        _timed(runner, 2, t)  # warm-up: compiled code loaded, caches warm
+    steps = 2
+    while _timed(runner, steps, 1) < 0.25 * min_time and steps < 100000:
+        steps *= 2
+    steps = max(2, int(steps * min_time / max(_timed(runner, steps, 1), 1e-6)))
+    times: dict[int, list[float]] = {t: [] for t in counts}
+    for rep in range(REPEATS):
+        for t in counts if rep % 2 == 0 else counts[::-1]:
+            times[t].append(_timed(runner, steps, t))
+    n = len(runner.particles)
+    return n, {t: n * steps / float(np.median(v)) for t, v in times.items()}
 
 
 def main() -> None:
     quick = "--quick" in sys.argv
     model = GranularModel.from_material(materials.get("MS"))
-    print(f"numba threads: {numba.get_num_threads()}")
-    print(f"{'particles':>10} {'contact':>10} {'particle-steps/s':>18}")
-    sizes = (10**4, 10**5) if quick else (10**4, 10**5, 10**6)
-    for n in sizes:
-        for contact in ("two-field", "cover"):
-            count, rate = particle_steps_per_second(n, model, min_time=2.0 if quick else 5.0, contact=contact)
-            print(f"{count:>10d} {contact:>10} {rate:>18.3e}")
+    print(f"numba threads available: {numba.config.NUMBA_NUM_THREADS}, layer {numba.threading_layer()}")
+    print(f"{'particles':>10} {'body':>6} {'1 thread':>12} {'2 threads':>12} {'2/1':>6}  [particle-steps/s]")
+    cases = [(10**4, "plate"), (10**4, "wheel"), (10**5, "plate"), (10**5, "wheel")]
+    if not quick:
+        cases.append((10**6, "plate"))
+    for n, body in cases:
+        count, rate = particle_steps_per_second(n, model, body, min_time=1.0 if quick else 2.0)
+        two = rate.get(2, float("nan"))
+        print(
+            f"{count:>10d} {body:>6} {rate[1]:>12.3e} {two:>12.3e} {two / rate[1]:>6.2f}"
+            f"  load {os.getloadavg()[0]:.1f}",
+            flush=True,
+        )
     if quick:
         return
     t0 = time.perf_counter()
@@ -81,9 +128,10 @@ def main() -> None:
     wall = time.perf_counter() - t0
     md = res.metadata
     print(
-        f"plate intrusion (MS, plate 0.05 m, depth 0.05 m, defaults): {wall:.1f} s wall, "
-        f"{md['particles']} particles, {md['steps']} steps, cell {md['cell_size_m'] * 1e3:.2f} mm, "
-        f"F_z = {res.summary['force_z_N']:.2f} N"
+        f"plate intrusion (MS, plate 0.05 m, depth 0.05 m, defaults, {numba.get_num_threads()} threads "
+        f"allowed): {wall:.1f} s wall, {md['particles']} particles, {md['steps']} steps, "
+        f"cell {md['cell_size_m'] * 1e3:.2f} mm, F_z = {res.summary['force_z_N']:.2f} N, "
+        f"load {os.getloadavg()[0]:.1f}"
     )
     if "--studies" not in sys.argv and os.environ.get("TERRADYN_BENCH_STUDIES") != "1":
         print("(study wall times: run with --studies or TERRADYN_BENCH_STUDIES=1; about 18 min)")

@@ -157,3 +157,100 @@ def test_particle_mass_is_conserved_exactly_through_a_run():
     K.p2g(q.pos, q.vel, q.aff, q.stress, q.mass, q.vol, *grid.origin, grid.cell_size, dt, buf)
     gm, _ = K.grid_totals(buf)
     assert gm.sum() == pytest.approx(m0.sum(), rel=1e-13)
+
+
+def _rolling_wheel_runner(threads: int):
+    """A bed of ~5400 particles (two blocks of body_particles) with a wheel rolling through it."""
+    import numba
+
+    from terradyn.geometry import WheelCircular
+    from terradyn.mpm.bodies import BodyState, body_segments
+    from terradyn.mpm.solver import BedGrid, Phase, Runner, make_bed, stable_time_step
+
+    grid = BedGrid(0.2, 0.06, 0.03, 0.003, -0.1)
+    body = BodyState(
+        seg=body_segments(WheelCircular(0.03, 0.1), 0.003),
+        pose=np.array([0.0, 0.024, 0.0]),
+        twist=np.array([0.05, -0.05, -2.0]),
+        free=np.zeros(3, dtype=np.bool_),
+        mass=1.0,
+        load=np.zeros(3),
+        friction=0.4,
+        width=0.1,
+    )
+    runner = Runner(MODEL, grid, make_bed(MODEL, grid), body, stable_time_step(MODEL, 0.003), [Phase("a", 1)])
+    old = numba.get_num_threads()
+    numba.set_num_threads(threads)
+    try:
+        runner.prepare()
+    finally:
+        numba.set_num_threads(old)
+    return runner
+
+
+def test_two_threads_give_the_one_thread_step_to_rounding():
+    import numba
+
+    if numba.config.NUMBA_NUM_THREADS < 2:
+        pytest.skip("needs NUMBA_NUM_THREADS >= 2")
+    runs = []
+    for threads in (1, 2):
+        runner = _rolling_wheel_runner(2)  # two p2g grid copies in both runs
+        forces = np.zeros((40, 3))
+        old = numba.get_num_threads()
+        numba.set_num_threads(threads)
+        try:
+            runner._advance(40, 0.0, forces)
+        finally:
+            numba.set_num_threads(old)
+        runs.append((runner.particles, forces))
+    (p1, f1), (p2, f2) = runs
+    assert np.abs(f1[:, 1]).max() > 0.0  # the wheel is in contact
+    np.testing.assert_allclose(f2, f1, rtol=1e-9, atol=1e-9 * np.abs(f1).max())
+    np.testing.assert_allclose(p2.pos, p1.pos, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(p2.stress, p1.stress, rtol=0, atol=1e-9 * np.abs(p1.stress).max())
+
+
+def test_body_particles_blocks_list_the_near_particles_in_order():
+    import numba
+
+    runner = _rolling_wheel_runner(1)
+    pos, b = runner.particles.pos, runner.body
+    reach = b.reach + 4.5 * runner.grid.cell_size
+    assert len(pos) > 4096  # more than one block
+    r = np.hypot(pos[:, 0] - b.pose[0], pos[:, 1] - b.pose[1])
+    want = np.flatnonzero(r * r <= reach * reach)
+    old = numba.get_num_threads()
+    for threads in {1, min(2, numba.config.NUMBA_NUM_THREADS)}:
+        geo = np.full((len(pos), 3), 7.0)  # stale rows must be cleared
+        near = np.zeros(len(pos), dtype=np.int64)
+        numba.set_num_threads(threads)
+        try:
+            k = K.body_particles(pos, b.seg, b.pose, reach, geo, near)
+        finally:
+            numba.set_num_threads(old)
+        np.testing.assert_array_equal(near[:k], want)
+        far = np.setdiff1d(np.arange(len(pos)), want)
+        assert np.all(geo[far] == 0.0)
+        np.testing.assert_allclose(np.hypot(geo[want, 0], geo[want, 1]), 1.0, rtol=1e-12)
+
+
+def test_runner_keeps_the_faster_thread_count_and_probes_the_other():
+    from terradyn.mpm import solver
+
+    runner = _rolling_wheel_runner(1)
+    n = solver.PARALLEL_MIN_PARTICLES
+    runner.particles = solver.ParticleState(
+        *(np.zeros((n, *a.shape[1:])) for a in vars(runner.particles).values())
+    )
+    assert runner._thread_count(1) == 1
+    picks = []
+    for _ in range(2 + 2 * solver.THREAD_PROBE_EVERY):
+        use = runner._thread_count(2)
+        picks.append(use)
+        runner._time_chunk(use, 1.0 if use == 1 else 2.0)  # two threads twice as slow
+    assert picks[:3] == [2, 2, 1]  # warm-up chunk (not timed), then each count once
+    later = picks[3:]
+    assert later.count(1) > later.count(2) >= 1  # one thread kept, two threads tried again
+    small = _rolling_wheel_runner(1)
+    assert len(small.particles) < n and small._thread_count(2) == 1

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from ._common_kernels import _MASS_EPS, _coulomb, _node_velocity, _weights
 
@@ -35,39 +35,64 @@ def polygon_sdf(px, pz, seg):
     Negative inside (even-odd rule over all loops). Returns ``(phi, nx, nz)`` with ``n`` the unit
     outward normal of the body at the nearest boundary point.
     """
-    best = 1e300
-    bx = 0.0
-    bz = 0.0
+    phi, nx, nz, _ = _polygon_sdf_from(px, pz, seg, 0)
+    return phi, nx, nz
+
+
+@njit(cache=True, fastmath=True, inline="always")
+def _segment_offset(px, pz, x1, z1, x2, z2):
+    """Vector (qx, qz) [m] from (px, pz) to the nearest point of segment (x1, z1)-(x2, z2)."""
+    ex = x2 - x1
+    ez = z2 - z1
+    ll = ex * ex + ez * ez
+    t = 0.0
+    if ll > 0.0:
+        t = ((px - x1) * ex + (pz - z1) * ez) / ll
+        t = min(1.0, max(0.0, t))
+    return x1 + t * ex - px, z1 + t * ez - pz
+
+
+@njit(cache=True, fastmath=True)
+def _polygon_sdf_from(px, pz, seg, first):
+    """:func:`polygon_sdf` that tries segment ``first`` (say the nearest one of a neighbouring point)
+    before the others, so that most segments are passed over by a bounding-box test; returns
+    ``(phi, nx, nz, index of the nearest segment)``. Equal to :func:`polygon_sdf` to rounding (only
+    which of two equally near segments is kept can differ)."""
+    x1 = seg[first, 0]
+    z1 = seg[first, 1]
+    x2 = seg[first, 2]
+    z2 = seg[first, 3]
+    bx, bz = _segment_offset(px, pz, x1, z1, x2, z2)
+    best = bx * bx + bz * bz
+    nearest = first
     inside = False
     for s in range(seg.shape[0]):
         x1 = seg[s, 0]
         z1 = seg[s, 1]
         x2 = seg[s, 2]
         z2 = seg[s, 3]
-        ex = x2 - x1
-        ez = z2 - z1
-        ll = ex * ex + ez * ez
-        t = 0.0
-        if ll > 0.0:
-            t = ((px - x1) * ex + (pz - z1) * ez) / ll
-            t = min(1.0, max(0.0, t))
-        qx = x1 + t * ex - px
-        qz = z1 + t * ez - pz
-        d2 = qx * qx + qz * qz
-        if d2 < best:
-            best = d2
-            bx = qx
-            bz = qz
+        if s != first:
+            # distance to the segment's bounding box: a lower bound of the distance to the segment
+            ox = max(min(x1, x2) - px, px - max(x1, x2), 0.0)
+            oz = max(min(z1, z2) - pz, pz - max(z1, z2), 0.0)
+            if ox * ox + oz * oz < best:
+                qx, qz = _segment_offset(px, pz, x1, z1, x2, z2)
+                d2 = qx * qx + qz * qz
+                if d2 < best:
+                    best = d2
+                    bx = qx
+                    bz = qz
+                    nearest = s
         if (z1 > pz) != (z2 > pz):
-            xc = x1 + (pz - z1) * ex / ez
+            xc = x1 + (pz - z1) * (x2 - x1) / (z2 - z1)
             if px < xc:
                 inside = not inside
     d = math.sqrt(best)
     if d < 1e-300:
-        return 0.0, 0.0, 1.0
+        return 0.0, 0.0, 1.0, nearest
     if inside:
-        return -d, bx / d, bz / d
-    return d, -bx / d, -bz / d
+        return -d, bx / d, bz / d, nearest
+    return d, -bx / d, -bz / d, nearest
 
 
 @njit(cache=True, fastmath=True)
@@ -191,14 +216,20 @@ def _far_side(npx, npz, node, i, j):
     return node[i, j, 2] < 0.5 * _FAR and npx * node[i, j, 0] + npz * node[i, j, 1] < 0.0
 
 
-@njit(cache=True, fastmath=True)
+#: Particles per block of :func:`body_particles` (each block lists its near particles in place).
+_PARTICLE_BLOCK = 4096
+
+
+@njit(cache=True, fastmath=True, parallel=True)
 def body_particles(pos, seg, pose, reach, geo, near):
     """Body normal and signed distance of the particles within ``reach`` [m] of the body origin.
 
     ``geo`` (N, 3) receives (n_x, n_z, phi): the world unit outward normal of the body at the
     particle's nearest boundary point and the signed distance phi [m] (< 0 inside a closed outline);
-    zeros for particles further away. ``near`` (N,) receives the indices of the near particles;
-    returns their count.
+    zeros for particles further away (rows already zero are not written again). ``near`` (N,)
+    receives the indices of the near particles in ascending order; returns their count. Blocks of
+    particles run in parallel, each listing its near particles in its own part of ``near``; the lists
+    are then joined in block order.
     """
     n = pos.shape[0]
     xb = pose[0]
@@ -206,36 +237,48 @@ def body_particles(pos, seg, pose, reach, geo, near):
     cth = math.cos(pose[2])
     sth = math.sin(pose[2])
     r2 = reach * reach
+    nblock = (n + _PARTICLE_BLOCK - 1) // _PARTICLE_BLOCK
+    counts = np.zeros(max(1, nblock), dtype=np.int64)
+    for c in prange(nblock):
+        start = c * _PARTICLE_BLOCK
+        k = start
+        hint = 0  # nearest segment of the previous near particle of the block
+        for p in range(start, min(n, start + _PARTICLE_BLOCK)):
+            rx = pos[p, 0] - xb
+            rz = pos[p, 1] - zb
+            if rx * rx + rz * rz > r2:
+                if geo[p, 0] != 0.0 or geo[p, 1] != 0.0 or geo[p, 2] != 0.0:
+                    geo[p, 0] = 0.0
+                    geo[p, 1] = 0.0
+                    geo[p, 2] = 0.0
+                continue
+            phi, nbx, nbz, hint = _polygon_sdf_from(cth * rx - sth * rz, sth * rx + cth * rz, seg, hint)
+            geo[p, 0] = cth * nbx + sth * nbz
+            geo[p, 1] = -sth * nbx + cth * nbz
+            geo[p, 2] = phi
+            near[k] = p
+            k += 1
+        counts[c] = k - start
     k = 0
-    for p in range(n):
-        rx = pos[p, 0] - xb
-        rz = pos[p, 1] - zb
-        if rx * rx + rz * rz > r2:
-            geo[p, 0] = 0.0
-            geo[p, 1] = 0.0
-            geo[p, 2] = 0.0
-            continue
-        phi, nbx, nbz = polygon_sdf(cth * rx - sth * rz, sth * rx + cth * rz, seg)
-        geo[p, 0] = cth * nbx + sth * nbz
-        geo[p, 1] = -sth * nbx + cth * nbz
-        geo[p, 2] = phi
-        near[k] = p
-        k += 1
+    for c in range(nblock):
+        start = c * _PARTICLE_BLOCK
+        for q in range(counts[c]):  # k <= start: moving down in ascending order is safe
+            near[k + q] = near[start + q]
+        k += counts[c]
     return k
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, parallel=True)
 def body_nodes(x0, z0, h, seg, pose, reach, band, node, old_box):
     """Band nodes of the body: ``node`` (nx, nz, 3) = (n_x, n_z, phi) [-, -, m].
 
     Nodes within ``reach`` [m] of the body origin whose signed distance phi is below ``band`` [m]
     get their world outward normal and phi; every other node gets phi = ``_FAR`` (no band), given
     that only nodes of ``old_box`` (the previous call's box) had a band. Returns the node box
-    ``(i_lo, i_hi, j_lo, j_hi)`` searched.
+    ``(i_lo, i_hi, j_lo, j_hi)`` searched. Rows of nodes run in parallel.
     """
     nx = node.shape[0]
     nz = node.shape[1]
-    node[old_box[0] : old_box[1] + 1, old_box[2] : old_box[3] + 1, 2] = _FAR
     xb = pose[0]
     zb = pose[1]
     cth = math.cos(pose[2])
@@ -244,16 +287,25 @@ def body_nodes(x0, z0, h, seg, pose, reach, band, node, old_box):
     i_hi = min(nx - 1, int((xb + reach - x0) / h) + 1)
     j_lo = max(0, int((zb - reach - z0) / h))
     j_hi = min(nz - 1, int((zb + reach - z0) / h) + 1)
-    for i in range(i_lo, i_hi + 1):
-        for j in range(j_lo, j_hi + 1):
-            rx = x0 + i * h - xb
-            rz = z0 + j * h - zb
-            phi, nbx, nbz = polygon_sdf(cth * rx - sth * rz, sth * rx + cth * rz, seg)
-            node[i, j, 2] = _FAR
-            if phi < band:
-                node[i, j, 0] = cth * nbx + sth * nbz
-                node[i, j, 1] = -sth * nbx + cth * nbz
-                node[i, j, 2] = phi
+    # every node of the old box or the new one is visited by exactly one (i, j) iteration
+    u_lo = min(i_lo, old_box[0]) if old_box[1] >= old_box[0] else i_lo
+    u_hi = max(i_hi, old_box[1])
+    v_lo = min(j_lo, old_box[2]) if old_box[3] >= old_box[2] else j_lo
+    v_hi = max(j_hi, old_box[3])
+    for i in prange(u_lo, u_hi + 1):
+        hint = 0  # nearest segment of the previous node of the row
+        for j in range(v_lo, v_hi + 1):
+            if i_lo <= i <= i_hi and j_lo <= j <= j_hi:
+                rx = x0 + i * h - xb
+                rz = z0 + j * h - zb
+                phi, nbx, nbz, hint = _polygon_sdf_from(cth * rx - sth * rz, sth * rx + cth * rz, seg, hint)
+                node[i, j, 2] = _FAR
+                if phi < band:
+                    node[i, j, 0] = cth * nbx + sth * nbz
+                    node[i, j, 1] = -sth * nbx + cth * nbz
+                    node[i, j, 2] = phi
+            elif old_box[0] <= i <= old_box[1] and old_box[2] <= j <= old_box[3]:
+                node[i, j, 2] = _FAR
     return i_lo, i_hi, j_lo, j_hi
 
 
@@ -407,7 +459,7 @@ def body_contact_sides(
     return fx, fz, ty
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, parallel=True)
 def body_project_sides(pos, vel, mass, geo, near, n_near, dt, seg, pose_old, pose, twist, mu, eps):
     """Keep particles on their side of the body surface, for thin and thick bodies alike.
 
@@ -417,16 +469,15 @@ def body_project_sides(pos, vel, mass, geo, near, n_near, dt, seg, pose_old, pos
     the surface on the side it came from. One that ends inside a closed outline moves out along the
     outward normal. Its velocity relative to the body then loses any approach along that normal
     (Coulomb friction ``mu``). Returns the reaction on the body, ``-sum m_p dv_p / dt``
-    (f_x, f_z, torque_y) [N/m, N m/m].
+    (f_x, f_z, torque_y) [N/m, N m/m]. The near particles run in parallel; their impulses are summed
+    afterwards in particle order, so the result does not depend on the thread count.
     """
     c0 = math.cos(pose_old[2])
     s0 = math.sin(pose_old[2])
     c1 = math.cos(pose[2])
     s1 = math.sin(pose[2])
-    fx = 0.0
-    fz = 0.0
-    ty = 0.0
-    for k in range(n_near):
+    imp = np.zeros((n_near, 3))
+    for k in prange(n_near):
         p = near[k]
         phi0 = geo[p, 2]
         rx = pos[p, 0] - pose[0]
@@ -499,7 +550,14 @@ def body_project_sides(pos, vel, mass, geo, near, n_near, dt, seg, pose_old, pos
         vel[p, 1] += dvz
         jx = -mass[p] * dvx / dt
         jz = -mass[p] * dvz / dt
-        fx += jx
-        fz += jz
-        ty += rz * jx - rx * jz
+        imp[k, 0] = jx
+        imp[k, 1] = jz
+        imp[k, 2] = rz * jx - rx * jz
+    fx = 0.0
+    fz = 0.0
+    ty = 0.0
+    for k in range(n_near):
+        fx += imp[k, 0]
+        fz += imp[k, 1]
+        ty += imp[k, 2]
     return fx, fz, ty
