@@ -20,7 +20,7 @@ def replay(
     runs: str = typer.Argument(..., help="Runs table (CSV, columns in docs/replay.md)."),
     model: str = typer.Option("rft", "--model", help=f"Terrain model: {_MODELS}."),
     out: str | None = typer.Option(
-        None, "--out", help=OUT_FOLDER_HELP + " predictions.csv, metrics.csv, replay.json."
+        None, "--out", help=OUT_FOLDER_HELP + " Writes predictions.csv, metrics.csv and replay.json."
     ),
     calibrate_on: str | None = typer.Option(
         None,
