@@ -360,14 +360,14 @@ def _predict_3d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
             )  # fmt: skip
             return np.asarray(out).reshape(heights.size, thetas.size, 6)
     else:
-        from ..rft.slip_sinkage import slip_sinkage_wrench_3d
+        from ..rft.slip_sinkage import SlipSinkageWheel3D
 
-        params = model.slip_sinkage()
+        state = SlipSinkageWheel3D(
+            mesh, xi, rotations, linear, angular, model.slip_sinkage(), surface_friction=friction
+        )
 
         def many(heights: np.ndarray) -> np.ndarray:
-            return slip_sinkage_wrench_3d(
-                mesh, xi, heights, rotations, linear, angular, params, surface_friction=friction
-            )
+            return state.wrenches(heights)
 
     if row.load is not None:
         from .solve import solve_load

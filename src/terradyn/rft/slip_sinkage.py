@@ -84,6 +84,7 @@ from .li2013 import leading_share, li2013_alpha_from_directions
 __all__ = [
     "SlipSinkageParameters",
     "SlipSinkageRFTModel",
+    "SlipSinkageWheel3D",
     "slip_sinkage_surface",
     "slip_sinkage_wrench_3d",
 ]
@@ -292,39 +293,78 @@ def slip_sinkage_wrench_3d(
     loaded by the 3D-RFT traction (Agarwal et al. 2023, :func:`terradyn.rft.rft3d.rft3d_facet_tractions`)
     at its depth below the reshaped surface of :func:`slip_sinkage_surface`, measured along the
     horizontal direction of travel (so at a slip angle the berm builds against the wheel's side face).
+    For many calls on one wheel state, build a :class:`SlipSinkageWheel3D` once.
     """
-    from .rft3d import rft3d_facet_tractions
+    wheel = SlipSinkageWheel3D(
+        mesh, xi, rotations, linear, angular, parameters, surface_friction=surface_friction
+    )
+    return wheel.wrenches(heights)
 
-    lin = np.asarray(linear, dtype=np.float64)
-    ang = np.asarray(angular, dtype=np.float64)
-    hs = np.atleast_1d(np.asarray(heights, dtype=np.float64))
-    out = np.zeros((hs.size, rotations.shape[0], 6))
-    for p, rot in enumerate(rotations):
-        offsets = mesh.centroids @ rot.T
-        normals = mesh.normals @ rot.T
-        velocities = lin + np.cross(ang, offsets)
-        verts = mesh.vertices @ rot.T
-        low = int(np.argmin(verts[:, 2]))
-        slip_velocity = (lin + np.cross(ang, verts[low]))[:2]
-        ratio, push, direction = _ratios(slip_velocity, lin[:2])
-        along_v = verts[:, :2] @ direction
-        along_c = offsets[:, :2] @ direction
-        for k, z in enumerate(hs):
-            world_z = z + verts[:, 2]
-            under = world_z < 0.0
-            if not np.any(under):
-                continue
-            sinkage = -float(world_z[low])
-            h = slip_sinkage_surface(
-                along_c, front=float(along_v[under].max()), bottom=float(along_v[low]), sinkage=sinkage,
-                excavation_ratio=ratio, push_ratio=push, parameters=parameters,
+
+class SlipSinkageWheel3D:
+    """A wheel in one kinematic state for 3D slip-sinkage RFT: the per-phase geometry computed once,
+    :meth:`wrenches` at any axle heights (arguments as :func:`slip_sinkage_wrench_3d`)."""
+
+    def __init__(
+        self,
+        mesh: Any,
+        xi: float,
+        rotations: NDArray[np.float64],
+        linear: NDArray[np.float64],
+        angular: NDArray[np.float64],
+        parameters: SlipSinkageParameters,
+        *,
+        surface_friction: float | None = None,
+    ) -> None:
+        lin = np.asarray(linear, dtype=np.float64)
+        ang = np.asarray(angular, dtype=np.float64)
+        self.mesh, self.xi, self.parameters, self.surface_friction = (
+            mesh,
+            float(xi),
+            parameters,
+            surface_friction,
+        )
+        self.phases = []
+        for rot in np.asarray(rotations, dtype=np.float64):
+            offsets = mesh.centroids @ rot.T
+            verts = mesh.vertices @ rot.T
+            low = int(np.argmin(verts[:, 2]))
+            ratio, push, direction = _ratios((lin + np.cross(ang, verts[low]))[:2], lin[:2])
+            self.phases.append(
+                (offsets, mesh.normals @ rot.T, lin + np.cross(ang, offsets), verts[:, 2], low, ratio, push,
+                 verts[:, :2] @ direction, offsets[:, :2] @ direction)
             )  # fmt: skip
-            shifted = offsets.copy()
-            shifted[:, 2] += z - h  # depth below the reshaped surface = h - (z + offset_z)
-            tractions = rft3d_facet_tractions(
-                shifted, normals, velocities, xi=xi, surface_level=0.0, surface_friction=surface_friction
-            )
-            forces = tractions * mesh.areas[:, None]
-            out[k, p, :3] = forces.sum(axis=0)
-            out[k, p, 3:] = np.cross(offsets, forces).sum(axis=0)
-    return out
+
+    def wrenches(self, heights: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Wrenches (H, P, 6) [N, N m] about the axle at axle heights (H,) [m]."""
+        from .rft3d import rft3d_facet_tractions
+
+        params = self.parameters
+        hs = np.atleast_1d(np.asarray(heights, dtype=np.float64))
+        out = np.zeros((hs.size, len(self.phases), 6))
+        for p, (offsets, normals, velocities, vz, low, ratio, push, along_v, along_c) in enumerate(
+            self.phases
+        ):
+            for k, z in enumerate(hs):
+                world_z = z + vz
+                under = world_z < 0.0
+                if not np.any(under):
+                    continue
+                sinkage = -float(world_z[low])
+                # the surface is nowhere above the berm crest: facets higher than it carry nothing
+                crest = params.bulldozing * sinkage * min(max(push, 0.0), 1.0)
+                near = np.nonzero(offsets[:, 2] + z < crest)[0]
+                h = slip_sinkage_surface(
+                    along_c[near], front=float(along_v[under].max()), bottom=float(along_v[low]),
+                    sinkage=sinkage, excavation_ratio=ratio, push_ratio=push, parameters=params,
+                )  # fmt: skip
+                shifted = offsets[near].copy()
+                shifted[:, 2] += z - h  # depth below the reshaped surface = h - (z + offset_z)
+                tractions = rft3d_facet_tractions(
+                    shifted, normals[near], velocities[near], xi=self.xi, surface_level=0.0,
+                    surface_friction=self.surface_friction,
+                )  # fmt: skip
+                forces = tractions * self.mesh.areas[near, None]
+                out[k, p, :3] = forces.sum(axis=0)
+                out[k, p, 3:] = np.cross(offsets[near], forces).sum(axis=0)
+        return out
