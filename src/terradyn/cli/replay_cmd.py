@@ -10,7 +10,7 @@ from typing import Any
 import typer
 
 from ..errors import InputError
-from ._common import OutputFormat, atomic_write, emit, progress, spinner
+from ._common import OutputFormat, atomic_write, emit, fraction_progress, progress
 from .options import FORMAT, OUT_FOLDER_HELP, PHASES, input_file, out_folder
 
 _MODELS = "rft, drft, wong-reece, rft3d, rft-ss (2D slip-sinkage) or rft3d-ss (3D slip-sinkage)"
@@ -69,8 +69,12 @@ def replay(
         raise InputError("--group-by", group_by, f"a column of the table: {[*table.extra_columns, 'medium']}")
     calibration = None
     if target is not None:
-        with spinner(f"calibrating {spec.name} on part of {len(table)} runs"):
-            spec, calibration = calibrate_table(table, spec, target, seed=seed)
+        # progress against the evaluation budget (the fit usually stops before it: the ETA is an upper bound)
+        with fraction_progress(f"calibrating {spec.name}", "evaluations") as update:
+            spec, calibration = calibrate_table(
+                table, spec, target, seed=seed, on_evaluation=lambda n: update(n, n / MAX_EVALUATIONS),
+                max_evaluations=MAX_EVALUATIONS,
+            )  # fmt: skip
     with progress(len(table), f"replay ({spec.name})") as advance:
         result = run_replay(
             table, spec, calibration=calibration, group_by=group_by, scheduler=scheduler, workers=workers,
@@ -98,6 +102,9 @@ def replay(
             title=f"replay {spec.name}: {summary['replayed_runs']}/{len(table)} runs",
         )
 
+
+#: evaluations of the model the calibration may spend
+MAX_EVALUATIONS = 120
 
 #: the files --out DIR gets
 OUTPUT_NAMES = (
