@@ -256,3 +256,43 @@ def test_dask_local_cluster_gives_the_serial_answer():
     a = replay(t, ReplayModel("rft"))
     b = replay(t, ReplayModel("rft"), scheduler="local", workers=2)
     assert [r["predicted_sinkage_m"] for r in a.runs] == [r["predicted_sinkage_m"] for r in b.runs]
+
+
+def test_culling_leaves_a_closed_outer_wheel_unchanged(tmp_path):
+    from terradyn.geometry3d import save_mesh, wheel_grousered
+
+    mesh = wheel_grousered(0.0625, 0.06, grouser_count=8, grouser_height=0.006, grouser_thickness=0.004,
+                           circumferential_resolution=120, axial_resolution=2)  # fmt: skip
+    save_mesh(mesh, tmp_path / "lugged.stl")
+    base = {"medium": "MS", "mesh_file": str(tmp_path / "lugged.stl"), "load_N": 20.0, "drawbar_pull_N": 0.0}
+    t = runs_from_records(
+        [{**base, "run_id": "a", "slip": 0.3}, {**base, "run_id": "b", "slip": -1.0, "slip_angle_deg": -60}]
+    )
+    a = replay(t, ReplayModel("rft3d", phase_count=2))
+    b = replay(t, ReplayModel("rft3d", phase_count=2, cull=False))
+    for ra, rb in zip(a.runs, b.runs, strict=True):
+        for q in ("sinkage_m", "drawbar_pull_N", "side_force_N", "drive_torque_Nm"):
+            assert ra[f"predicted_{q}"] == pytest.approx(rb[f"predicted_{q}"], rel=1e-9, abs=1e-12), q
+
+
+def test_culling_drops_an_enclosed_hub(tmp_path):
+    from terradyn.geometry3d import TriangleMesh, save_mesh, wheel_cylinder
+
+    tyre = wheel_cylinder(0.0625, 0.06, circumferential_resolution=120, axial_resolution=2)
+    hub = wheel_cylinder(0.058, 0.05, circumferential_resolution=120, axial_resolution=1)  # inside the tyre
+    both = TriangleMesh(
+        np.vstack((tyre.vertices, hub.vertices)), np.vstack((tyre.faces, hub.faces + len(tyre.vertices)))
+    )
+    save_mesh(tyre, tmp_path / "tyre.stl")
+    save_mesh(both, tmp_path / "tyre_hub.stl")
+    base = {"medium": "MS", "load_N": 20.0, "slip": 0.3, "drawbar_pull_N": 0.0}
+    t = runs_from_records(
+        [{**base, "run_id": n, "mesh_file": str(tmp_path / f"{n}.stl")} for n in ("tyre", "tyre_hub")]
+    )
+    culled = replay(t, ReplayModel("rft3d")).runs
+    plain = replay(t, ReplayModel("rft3d", cull=False)).runs
+    assert culled[1]["predicted_sinkage_m"] == pytest.approx(culled[0]["predicted_sinkage_m"], rel=1e-9)
+    assert culled[1]["predicted_drawbar_pull_N"] == pytest.approx(
+        culled[0]["predicted_drawbar_pull_N"], rel=1e-9
+    )
+    assert plain[1]["predicted_sinkage_m"] != pytest.approx(plain[0]["predicted_sinkage_m"], rel=1e-3)

@@ -40,6 +40,9 @@ def replay(
         None, "--bulldozing", help="Slip-sinkage bulldozing coefficient [-] (rft-ss, rft3d-ss)."
     ),
     phases: int = PHASES,
+    cull: bool = typer.Option(
+        True, "--cull/--no-cull", help="Drop mesh facets the medium cannot reach (hub, inner rim)."
+    ),
     scheduler: str = typer.Option(
         "serial",
         "--scheduler",
@@ -63,7 +66,9 @@ def replay(
     if workers is not None and not 1 <= workers <= 256:
         raise InputError("--workers", workers, "an integer in [1, 256]")
     target = _calibrate_on(calibrate_on)
-    spec = ReplayModel(model, scale=scale, excavation=excavation, bulldozing=bulldozing, phase_count=phases)
+    spec = ReplayModel(
+        model, scale=scale, excavation=excavation, bulldozing=bulldozing, phase_count=phases, cull=cull
+    )
     table = read_runs(path)  # type: ignore[arg-type]
     if group_by is not None and group_by not in (*table.extra_columns, "medium"):
         raise InputError("--group-by", group_by, f"a column of the table: {[*table.extra_columns, 'medium']}")

@@ -45,6 +45,8 @@ class ReplayModel:
     excavation, bulldozing, repose_angle : slip-sinkage parameters [-], [-], [rad] (None: the model's
         defaults, :class:`terradyn.rft.slip_sinkage.SlipSinkageParameters`); only for rft-ss/rft3d-ss
     phase_count : wheel angles averaged over one period of a non-circular wheel
+    cull : drop the facets of a mesh wheel the medium cannot reach (hub, inner rim), as
+        ``wheel steady --mesh`` does (:func:`terradyn.locomotion.wheel3d.wheel_contact_mesh`)
     """
 
     name: str
@@ -53,6 +55,7 @@ class ReplayModel:
     bulldozing: float | None = None
     repose_angle: float | None = None
     phase_count: int = 16
+    cull: bool = True
 
     def __post_init__(self) -> None:
         key = self.name.strip().lower()
@@ -282,6 +285,14 @@ def _values(
 
 # ----------------------------------------------------------------------------------------------- 3D
 @lru_cache(maxsize=64)
+def _contact_mesh(wheel: WheelSpec, side: float) -> Any:
+    """The facets of a mesh wheel the medium can reach for slip angles of the sign ``side``."""
+    from ..locomotion.wheel3d import wheel_contact_mesh
+
+    return wheel_contact_mesh(_mesh_3d(wheel), slip_angle=0.1 * side)
+
+
+@lru_cache(maxsize=64)
 def _mesh_period(wheel: WheelSpec) -> float:
     """Rotational period [rad] of a mesh wheel, detected once per wheel (it costs more than a solve)."""
     from ..locomotion.steady3d import wheel_period_3d
@@ -308,6 +319,8 @@ def _predict_3d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
     from ..rft.rft3d import agarwal2023_xi_material
 
     mesh = _mesh_3d(row.wheel)
+    if row.wheel.is_mesh and model.cull:
+        mesh = _contact_mesh(row.wheel, float(np.sign(row.slip_angle)))
     material = _material(row.medium)
     xi = agarwal2023_xi_material(material) * model.scale
     friction = material.surface_friction
