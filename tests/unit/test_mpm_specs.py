@@ -191,7 +191,8 @@ def test_legacy_keywords_give_the_same_intrusion_as_specs():
         stroke=Stroke(averaging_window=0.004),
     )
     _same(flat, spec)
-    assert spec.metadata["bed_width_m"] == 0.2 and spec.summary["force_z_N"] > 0
+    # the bed snaps outwards to whole cells (BedGrid): 0.2 m asked, at most one more cell each side
+    assert 0.2 <= spec.metadata["bed_width_m"] <= 0.22 + 1e-12 and spec.summary["force_z_N"] > 0
 
 
 #: the inputs a wheel checkpoint is keyed on (checkpoints written before the specs must still resume)

@@ -39,7 +39,9 @@ app = typer.Typer(
 
 
 class MPMOptions:
-    cell_size = typer.Option(None, "--cell-size", help="Grid cell size [m] (default from the body size).")
+    cell_size = typer.Option(
+        None, "--cell-size", help="Grid cell size [m] (default: diameter / 16, wheels / 32)."
+    )
     ppc = typer.Option(2, "--particles-per-cell", help="Particles per cell along each axis.")
     packing = typer.Option("consolidated", "--packing", help="consolidated or unconsolidated bed.")
     walls = typer.Option(None, "--walls", help="Wall condition: free-slip, no-slip or frictional.")

@@ -17,7 +17,8 @@ Modelling choices to know when using it:
   zero-thickness plate is resolved as it is, composite and placed bodies as bare ones; a body whose
   parts span less than one cell is refused. ``contact="cover"`` selects the earlier scheme (plates
   thickened to three cells) for comparison.
-* Free-slip walls nearer than about five body sizes (or 2.5 depths) lower deep intrusion forces.
+* Free-slip walls that cut the failure mechanism raise intrusion forces; the default bed keeps 1.25
+  times the Prandtl mechanism's extent beside and below the body (``runs.mechanism_clearance``).
 * Runs below :data:`terradyn.mpm.solver.PARALLEL_MIN_PARTICLES` particles use one thread.
 
 Submodules are imported lazily so that ``import terradyn.mpm`` does not load numba.

@@ -90,15 +90,56 @@ class _Common:
         return self.bed.gravity
 
 
+#: Default cells across an intruder's diameter (docs/mpm.md, "Default resolution": the plate force
+#: still falls with refinement at about first order; 16 cells is the finest level of that study).
+INTRUSION_CELLS_ACROSS = 16
+#: Default cells across a wheel's diameter. Measured on the 0.13 m x 0.16 m wheel in MS under 130 N at
+#: slip 0.3 (docs/mpm.md): sinkage 8.5 / 19.6 / 16.6 mm at 16 / 24 / 32 cells across, drive torque
+#: 5.30 / 5.39 / 5.43 N m, drawbar pull -1.9 / -2.0 / -0.7 N. At 16 cells the sinkage was half the
+#: fine value, so the default is 32.
+WHEEL_CELLS_ACROSS = 32
+#: Default drive of a spinning wheel [rad of rotation]. Measured on the wheel above at 8 mm cells: the
+#: pull averaged over 0.5 rad windows starting 1, 1.5, 1.9, 2.25 and 3 rad into the drive is 1.2, 0.2,
+#: -0.4, -0.7 and -0.8 N (within 0.1 N of its final value from about 2.25 rad); the sinkage stays within
+#: 0.6 mm of its final value from 1 rad. With 4.5 rad the averaged last half starts at 2.25 rad.
+DRIVE_RADIANS = 4.5
+
+
+#: Clearance of the walls and the floor beyond the Prandtl mechanism, as a multiple of its size.
+MECHANISM_MARGIN = 1.25
+
+
+def mechanism_clearance(friction_coefficient: float, width: float) -> tuple[float, float]:
+    """Grains [m] to keep beside and below a body of ``width`` [m]: :data:`MECHANISM_MARGIN` times the
+    heave extent and the depth of the Prandtl mechanism of a strip footing of that width, at Davis'
+    friction angle ``atan(mu_s)`` (the plane-strain isochoric cone's collapse angle).
+
+    Measured (60 mm plate at 40 mm depth, MS, 10 mm cells): with the walls 0.18 m from the plate edges
+    (0.73 of the 0.246 m heave extent, the earlier rule of six body radii) moving them 1.5 times further
+    lowered the force by 12.4 %; this rule puts them 0.31 m from the edges.
+    """
+    from ..plasticity.slipline import prandtl_extent
+
+    extent = prandtl_extent(width, math.atan(friction_coefficient))
+    return MECHANISM_MARGIN * extent["heave_extent"], MECHANISM_MARGIN * extent["max_depth"]
+
+
 def _common(
-    body: Body, material: Any, bed: Bed, resolution: Resolution, overrides: dict[str, Any], min_cells: int
+    body: Body,
+    material: Any,
+    bed: Bed,
+    resolution: Resolution,
+    overrides: dict[str, Any],
+    min_cells: int,
+    default_cells: int,
 ) -> tuple[_Common, Body]:
-    """Resolve the model, the cell size (default rule: body diameter / 16) and the MPM body."""
+    """Resolve the model, the cell size (default rule: body diameter / ``default_cells``, see
+    :data:`INTRUSION_CELLS_ACROSS` and :data:`WHEEL_CELLS_ACROSS`) and the MPM body."""
     model = resolve_model(material, **overrides)
     if not isinstance(body, Body):
         raise InputError("body", body, "a terradyn.geometry Body")
     diameter = 2.0 * body.bounding_radius
-    cell_size = diameter / 16.0 if resolution.cell_size is None else resolution.cell_size
+    cell_size = diameter / default_cells if resolution.cell_size is None else resolution.cell_size
     check_positive("cell_size", cell_size)
     n_min = min_cells if resolution.min_cells_across is None else resolution.min_cells_across
     if diameter / cell_size < n_min:
@@ -266,10 +307,12 @@ def _intrusion_bed(seg, c: _Common, depth, window, direction, angle):
     sin_d, cos_d = math.sin(direction), math.cos(direction)
     travel = (z_start - z_end) / sin_d
     x_at_depth = (z_start + depth) / sin_d * cos_d
-    # Free-slip walls must lie beyond the failure mechanism (log-spiral fans reach several body sizes
-    # and grow with depth); closer walls give the mechanism a frictionless slip surface.
-    side = max(6.0 * reach, 2.5 * depth, 4.0 * h)
-    below = max(4.0 * reach, 1.5 * depth, 4.0 * h)
+    # Free-slip walls must lie beyond the failure mechanism; closer walls give it a frictionless slip
+    # surface. Its size is the Prandtl mechanism of a strip of the body's width at Davis' angle
+    # atan(mu_s) of the isochoric cone (see mechanism_clearance).
+    side, below = mechanism_clearance(c.model.friction_coefficient, 2.0 * reach)
+    side = max(side, 2.5 * depth, 4.0 * h)
+    below = max(below, 1.5 * depth, 4.0 * h)
     bed_depth, bed_width = c.bed.depth, c.bed.width
     bed_depth = depth + 0.5 * window + reach + below if bed_depth is None else bed_depth
     x_path = sorted([-x_at_depth, -x_at_depth + travel * cos_d])
@@ -351,10 +394,12 @@ def run_intrusion(
 
     Specs (:mod:`terradyn.mpm.specs`)
     ---------------------------------
-    bed : :class:`Bed`. Sizing rule for ``depth``/``width`` left None: max(6 body radii, 2.5 depth) of
-        grains beside the path and max(4 radii, 1.5 depth) below it: nearer free-slip walls cut the
-        failure mechanism and lower the force at depth (checked: walls 5 plate lengths away already do).
-    resolution : :class:`Resolution`; cell size default body diameter / 16, at least
+    bed : :class:`Bed`. Sizing rule for ``depth``/``width`` left None: beside the path the larger of
+        2.5 depths and 1.25 heave extents of the Prandtl mechanism of a strip of the body's diameter at
+        Davis' angle atan(mu_s); below it the larger of 1.5 depths and 1.25 mechanism depths
+        (:func:`mechanism_clearance`); nearer free-slip walls cut the failure mechanism.
+    resolution : :class:`Resolution`; cell size default body diameter / 16
+        (:data:`INTRUSION_CELLS_ACROSS`), at least
         ``min_cells_across`` (default 6) cells across the body. Contact ``"two-field"`` (default;
         bodies need no thickness, composites and placed bodies as bare ones) or the legacy ``"cover"``
         (plates thickened to three cells).
@@ -380,7 +425,15 @@ def run_intrusion(
     specs, overrides = _specs(
         "run_intrusion", legacy, "bed_length", bed=bed, resolution=resolution, outputs=outputs, stroke=stroke
     )
-    c, eff = _common(body, material, specs["bed"], specs["resolution"], overrides, min_cells=6)
+    c, eff = _common(
+        body,
+        material,
+        specs["bed"],
+        specs["resolution"],
+        overrides,
+        min_cells=6,
+        default_cells=INTRUSION_CELLS_ACROSS,
+    )
     outputs, h = specs["outputs"], c.cell_size
     check_positive("depth", depth)
     hint = "the body must enter the bed from the surface"
@@ -567,7 +620,8 @@ def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, dr
     spin = max_omega if torque_mode else abs(omega_cmd)  # the largest spin the step must resolve
     duration = drive.duration
     if duration is None:
-        duration = 3.0 / spin if not torque_mode and spin != 0 else 20.0 * math.sqrt(reach / c.gravity)
+        steady = not torque_mode and spin != 0
+        duration = DRIVE_RADIANS / spin if steady else 20.0 * math.sqrt(reach / c.gravity)
     check_positive("duration", duration)
     sink_time = 3.0 * math.sqrt(reach / c.gravity) if drive.sink_time is None else drive.sink_time
     if torque_mode:
@@ -602,8 +656,9 @@ def run_wheel(
     ``slip`` given the forward speed is prescribed, ``vx = (1 - slip) omega r`` (r: nominal outer
     radius), and the vertical motion is free under the load; with ``slip=None`` both translations are
     free (self-propelled). ``omega = 0`` with ``slip=None`` leaves a body resting under its load. The
-    default duration is ``3 / |omega|``: starting from the pit it sank into, a wheel's pull and
-    sinkage settle after about two radians of rotation (measured for a 0.13 m wheel on MS).
+    default duration is ``4.5 / |omega|`` (:data:`DRIVE_RADIANS`): starting from the pit it sank
+    into, a wheel's pull settles after about 2.25 rad of rotation (measured for a 0.13 m wheel on MS at
+    slip 0.3), so the averaged last half of the drive is steady.
 
     Torque control: give ``drive_torque`` [N m] (+ drives forward) instead of ``omega``; the spin is
     then free, with moment of inertia ``inertia`` [kg m^2] (default a uniform disc of the load's mass,
@@ -627,7 +682,15 @@ def run_wheel(
     specs, overrides = _specs(
         "run_wheel", legacy, "bed_width", bed=bed, resolution=resolution, outputs=outputs, drive=drive
     )
-    c, eff = _common(wheel, material, specs["bed"], specs["resolution"], overrides, min_cells=8)
+    c, eff = _common(
+        wheel,
+        material,
+        specs["bed"],
+        specs["resolution"],
+        overrides,
+        min_cells=8,
+        default_cells=WHEEL_CELLS_ACROSS,
+    )
     outputs, h, g = specs["outputs"], c.cell_size, c.gravity
     radius = _nominal_radius(wheel)
     seg = body_segments(eff, h)

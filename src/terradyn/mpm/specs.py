@@ -154,7 +154,8 @@ class Bed(_Spec):
 class Resolution(_Spec):
     """How finely the grains and the grid resolve the case.
 
-    cell_size : grid spacing [m]; None = body diameter / 16.
+    cell_size : grid spacing [m]; None = body diameter / 16 for intrusions, / 32 for wheels
+        (terradyn.mpm.runs.INTRUSION_CELLS_ACROSS, WHEEL_CELLS_ACROSS).
     particles_per_cell : material points per cell along each axis (1-4).
     cfl : time step as a fraction of the cell crossing time of the fastest wave (<= 0.5).
     contact : grid contact scheme (:class:`~terradyn.mpm.bodies.ContactScheme`), ``"two-field"``
@@ -245,7 +246,7 @@ class Stroke(_Spec):
 @dataclass(frozen=True, repr=False)
 class Drive(_Spec):
     """Run length of a wheel: ``sink_time`` [s] sinking under the load (None: ``3 sqrt(reach / g)``),
-    then ``duration`` [s] of driving (None: 3 rad of rotation, ``3 / |omega|``; torque-driven
+    then ``duration`` [s] of driving (None: 4.5 rad of rotation, ``4.5 / |omega|``; torque-driven
     ``20 sqrt(reach / g)``); the summary averages the last ``average_fraction`` (0.05-1) of the
     drive."""
 
