@@ -108,7 +108,7 @@ def particle_steps_per_second(
 def main() -> None:
     quick = "--quick" in sys.argv
     model = GranularModel.from_material(materials.get("MS"))
-    print(f"numba threads available: {numba.config.NUMBA_NUM_THREADS}, layer {numba.threading_layer()}")
+    print(f"numba threads available: {numba.config.NUMBA_NUM_THREADS}")
     print(f"{'particles':>10} {'body':>6} {'1 thread':>12} {'2 threads':>12} {'2/1':>6}  [particle-steps/s]")
     cases = [(10**4, "plate"), (10**4, "wheel"), (10**5, "plate"), (10**5, "wheel")]
     if not quick:
@@ -121,6 +121,7 @@ def main() -> None:
             f"  load {os.getloadavg()[0]:.1f}",
             flush=True,
         )
+    print(f"numba threading layer: {numba.threading_layer()}")
     if quick:
         return
     t0 = time.perf_counter()
