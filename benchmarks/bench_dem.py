@@ -1,10 +1,11 @@
 """DEM (LAMMPS) speed: particle-steps per second on 1 and 2 MPI ranks, and a virtual plate test's wall time.
 
-Throughput: a bed of N grains (MS contact parameters, 1 mm grains with +-20% spread, slab 4 grains
-thick) built on a lattice in contact under gravity, so every grain has neighbours and contacts as in a
-settled bed; the figure is N x steps / wall seconds of ``run`` (Hertz-Mindlin pair with rolling
-resistance, walls, gravity, nve/sphere, neighbour lists), after 100 warm-up steps. Two ranks run the
-same script under the mpich wheel's ``mpirun -np 2`` (LAMMPS domain decomposition along x).
+Throughput: a bed of N grains (MS contact parameters with 1 mm monodisperse grains, slab 4 grains
+thick, three times as long as deep) on a simple-cubic lattice in contact under gravity, so every grain
+has contacts from the first step (the mean count is printed; settled beds have 4.5-6.6). The figure is
+N x steps / wall seconds of ``run`` (Hertz-Mindlin pair with rolling resistance, walls, gravity,
+nve/sphere, neighbour lists) after 100 warm-up steps. Two ranks run the same script under the mpich
+wheel's ``mpirun -np 2`` (LAMMPS domain decomposition).
 
 Virtual plate test: ``virtual_plate_test`` of the generic medium (1 mm grains), a 10 mm plate pushed
 straight down to 10 mm, bed poured and settled, at the defaults of ``terradyn calibrate rft
@@ -22,8 +23,10 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 
-def _throughput(n: int, steps: int) -> tuple[int, float]:
+
+def _throughput(n: int, steps: int) -> tuple[int, float, float]:
     from terradyn import materials
     from terradyn.dem import bed as B
     from terradyn.dem._lammps import new_lammps
@@ -31,13 +34,13 @@ def _throughput(n: int, steps: int) -> tuple[int, float]:
     dem = materials.get("MS").require_dem()
     import dataclasses
 
-    dem = dataclasses.replace(dem, grain_diameter=1e-3)
+    dem = dataclasses.replace(dem, grain_diameter=1e-3, diameter_spread=0.0)
     d = dem.grain_diameter
-    dmax = d * (1 + dem.diameter_spread)
-    thickness = 4 * d
-    length = math.sqrt(n * (1.05 * dmax) ** 3 / thickness * 3.0)  # 3 x as long as deep
-    per_layer = int((length - dmax) / (1.05 * dmax)) * int(thickness / (1.05 * dmax))
-    height = (math.ceil(n / per_layer) + 2) * 1.05 * dmax
+    a = 0.9999 * d  # simple-cubic lattice in contact: six contacts per grain from the first step
+    ny = 4
+    nz = max(4, round((n / ny / 3.0) ** 0.5))  # three times as long as deep
+    nx = math.ceil(n / (ny * nz))
+    length, thickness, height = nx * a, ny * a, (nz + 2) * a
     box = (-0.5 * length, 0.5 * length, 0.0, thickness, 0.0, height)
     lmp = new_lammps()
     for line in (
@@ -45,36 +48,39 @@ def _throughput(n: int, steps: int) -> tuple[int, float]:
         f"region td_box block {box[0]} {box[1]} 0 {thickness} 0 {height} units box", "create_box 2 td_box",
     ):  # fmt: skip
         lmp.command(line)
-    pos = B._lattice(n, box, dmax, 0.0, 1)
-    lmp.create_atoms(n, None, [B.GRAIN_TYPE] * n, pos.ravel().tolist())
+    k = np.arange(nx * ny * nz)
+    pos = np.column_stack(
+        (box[0] + (k % nx + 0.5) * a, ((k // nx) % ny + 0.5) * a, (k // (nx * ny) + 0.5) * a)
+    )
+    lmp.create_atoms(len(pos), None, [B.GRAIN_TYPE] * len(pos), pos.ravel().tolist())
     for line in (
         "group grains type 1",
         "group body type 2",
-        f"variable td_d atom {d}*(1.0+{dem.diameter_spread}*(2.0*random(0,1,7)-1.0))",
-        "set type 1 diameter v_td_d",
+        f"set type 1 diameter {d}",
         f"set type 1 density {dem.grain_density}",
         f"timestep {B.time_step(dem)}",
     ):
         lmp.command(line)
     B.setup_interactions(lmp, box, dem, B.BedKind.SLAB, friction=dem.friction, rolling=dem.rolling_friction)
-    lmp.command("run 100")  # warm-up: grains fall into contact
+    lmp.command("run 100")  # warm-up
     t0 = time.perf_counter()
     lmp.command(f"run {steps} pre no")
     wall = time.perf_counter() - t0
     count = int(lmp.get_natoms())
+    contacts = float(lmp.extract_compute("td_zsum", 0, 0)) / count
     lmp.close()
-    return count, count * steps / wall
+    return count, count * steps / wall, contacts
 
 
 def _worker(n: int, steps: int) -> None:
-    count, rate = _throughput(n, steps)
+    count, rate, contacts = _throughput(n, steps)
     from terradyn.dem._lammps import mpi_rank
 
     if mpi_rank() == 0:
-        print(f"RESULT {count} {rate}", flush=True)
+        print(f"RESULT {count} {rate} {contacts}", flush=True)
 
 
-def _two_ranks(n: int, steps: int) -> tuple[int, float] | None:
+def _two_ranks(n: int, steps: int) -> tuple[int, float, float] | None:
     mpirun = Path(sys.prefix) / "bin" / "mpirun"
     if not mpirun.is_file():
         return None
@@ -82,8 +88,8 @@ def _two_ranks(n: int, steps: int) -> tuple[int, float] | None:
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=900, env={**os.environ})
     for line in proc.stdout.splitlines():
         if line.startswith("RESULT"):
-            _, count, rate = line.split()
-            return int(count), float(rate)
+            _, count, rate, contacts = line.split()
+            return int(count), float(rate), float(contacts)
     print("   2-rank run failed:", (proc.stderr or proc.stdout).strip()[-300:])
     return None
 
@@ -98,15 +104,15 @@ def main() -> None:
         print(f"skipped: {exc}")
         return
     print("particle-steps/s = grains x time steps / wall seconds of LAMMPS 'run' (body-free bed)")
-    print(f"{'grains':>8} {'ranks':>6} {'steps':>6} {'particle-steps/s':>18}")
+    print(f"{'grains':>8} {'ranks':>6} {'steps':>6} {'contacts/grain':>15} {'particle-steps/s':>18}")
     sizes = (10_000,) if quick else (10_000, 100_000)
     for n in sizes:
         steps = 1000 if n <= 10_000 else 200
-        count, rate = _throughput(n, steps)
-        print(f"{count:>8d} {1:>6d} {steps:>6d} {rate:>18.3e}", flush=True)
+        count, rate, contacts = _throughput(n, steps)
+        print(f"{count:>8d} {1:>6d} {steps:>6d} {contacts:>15.2f} {rate:>18.3e}", flush=True)
         two = _two_ranks(n, steps)
         if two is not None:
-            print(f"{two[0]:>8d} {2:>6d} {steps:>6d} {two[1]:>18.3e}", flush=True)
+            print(f"{two[0]:>8d} {2:>6d} {steps:>6d} {two[2]:>15.2f} {two[1]:>18.3e}", flush=True)
     if quick:
         return
     from terradyn import materials

@@ -108,13 +108,22 @@ def test_symmetric_plate_straight_down_has_no_lateral_force(plate_run):
 
 def test_restart_equals_uninterrupted(medium, bed_file, plate_run, tmp_path):
     ckpt = tmp_path / "run.restart"
+    stop = 10
     with pytest.raises(KeyboardInterrupt):
-        run_intrusion(PLATE, medium, bed=load_bed(bed_file[0]), checkpoint_path=ckpt, stop_after_rows=10,
+        run_intrusion(PLATE, medium, bed=load_bed(bed_file[0]), checkpoint_path=ckpt, stop_after_rows=stop,
                       **RUN)  # fmt: skip
     assert ckpt.is_file() and ckpt.with_name(ckpt.name + ".json").is_file()
     resumed = run_intrusion(PLATE, medium, checkpoint_path=ckpt, resume=True, **RUN)
-    for key, values in plate_run.history.items():
-        np.testing.assert_allclose(resumed.history[key], values, rtol=1e-9, atol=1e-12, err_msg=key)
+    a, b = plate_run.history, resumed.history
+    assert len(a["time_s"]) == len(b["time_s"])
+    for key in a:
+        # the rows before the checkpoint are the same run; the first row after it agrees to
+        # round-off (the resumed run starts from the exact saved state; LAMMPS re-orders its sums)
+        np.testing.assert_array_equal(b[key][:stop], a[key][:stop], err_msg=key)
+        np.testing.assert_allclose(b[key][stop], a[key][stop], rtol=1e-5, atol=1e-9, err_msg=key)
+    # afterwards granular chaos amplifies round-off: the two runs agree statistically
+    sub = a["depth_m"] > 0.5 * D
+    assert b["force_z_N"][sub].mean() == pytest.approx(a["force_z_N"][sub].mean(), rel=0.15)
 
 
 def test_bed_that_cannot_settle_in_time_is_refused(medium):
@@ -185,10 +194,10 @@ def test_body_spheres_cover_the_outline_without_gaps(body):
     assert gaps.max() <= 0.25 * D * 1.0001
     spheres, d_w = body_spheres(body, D, (0.0, 0.0, 0.3), 0.0, (0.0, 4 * D), periodic=True)
     assert d_w == pytest.approx(0.5 * D)
-    assert len(spheres) == len(pts) * 8  # rows half a grain apart across a 4-grain slab
+    assert len(spheres) == len(pts) * 12  # rows 0.35 grain apart across a 4-grain slab
     # rotation and translation are rigid: distances between sphere centres are those of the points
     ref = np.hypot(*(pts[1] - pts[0]))
-    got = np.linalg.norm(spheres[8] - spheres[0])
+    got = np.linalg.norm(spheres[12] - spheres[0])
     assert got == pytest.approx(ref)
 
 
@@ -214,3 +223,22 @@ def test_symmetric_wedge_in_a_3d_bed(medium):
     fz = h["force_z_N"][sub].mean()
     assert fz > 0
     assert abs(h["force_x_N"][sub].mean()) < 0.15 * fz
+
+
+@pytest.mark.slow
+def test_quasi_static_plate_force_scales_with_gravity(medium):
+    """Slonaker et al. (2017) scale granular locomotion between gravities: at equal Froude number
+    v^2 / (g L) the force is proportional to rho g. The same plate in the same bed at g and g/2, the
+    speed scaled by sqrt(g): force ratio 1/2 (the grains' stiffness number differs by 2, a small effect
+    at E / (rho_s g d) >= 2e4)."""
+    forces = []
+    for g in (9.81, 9.81 / 2):
+        spec = dataclasses.replace(
+            default_bed_spec(PLATE, depth=DEPTH, direction=math.pi / 2, angle=0.0, grain_diameter=D,
+                             packing="loose"), gravity=g)  # fmt: skip
+        res = run_intrusion(PLATE, medium, bed=prepare_bed(medium, spec), depth=DEPTH,
+                            speed=0.03 * math.sqrt(g / 9.81),
+                            record_spacing=0.25 * D)  # fmt: skip
+        h = res.history
+        forces.append(h["force_z_N"][h["depth_m"] > 0.5 * D].mean())
+    assert forces[1] / forces[0] == pytest.approx(0.5, abs=0.12)

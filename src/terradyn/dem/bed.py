@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError, SolverError, check_finite, check_positive
+from ..errors import InputError, SolverError, check_finite, check_positive, check_range
 from ..materials import DEMParameters, Material
 from ._lammps import is_root, new_lammps
 
@@ -101,6 +101,7 @@ class BedSpec:
     grain_diameter : float or None  overrides the material's [dem] grain diameter (coarse graining)
     seed : int  random seed of the grain positions and sizes
     max_settle_time : float  simulated time [s] allowed for settling before the bed is refused
+    gravity : float  gravitational acceleration [m/s^2] (the bed settles and is tested under it)
     """
 
     length: float
@@ -112,6 +113,7 @@ class BedSpec:
     grain_diameter: float | None = None
     seed: int = 12345
     max_settle_time: float | None = None
+    gravity: float = 9.81
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "kind", BedKind.coerce(self.kind))
@@ -121,6 +123,7 @@ class BedSpec:
         for name in ("thickness", "headroom", "grain_diameter", "max_settle_time"):
             if getattr(self, name) is not None:
                 check_positive(name, getattr(self, name))
+        check_range("gravity", self.gravity, 0.01, 100.0, unit="m/s^2")
         if not isinstance(self.seed, int) or not 1 <= self.seed < 2**31:
             raise InputError("seed", self.seed, "an integer in [1, 2^31)")
 
@@ -231,7 +234,8 @@ def _commands(lmp: Any, lines: str) -> None:
 
 
 def setup_interactions(lmp: Any, bed_box: tuple[float, ...], dem: DEMParameters, kind: BedKind,
-                       *, friction: float, rolling: float, pair: bool = True) -> None:  # fmt: skip
+                       *, friction: float, rolling: float, pair: bool = True,
+                       gravity: float = 9.81) -> None:  # fmt: skip
     """Pair style, walls, gravity and integration of the grains. After a ``read_restart`` call it with
     ``pair=False``: the restart file holds the pair style, its coefficients and contact histories."""
     x0, x1, y0, y1 = bed_box[:4]
@@ -256,7 +260,7 @@ def setup_interactions(lmp: Any, bed_box: tuple[float, ...], dem: DEMParameters,
         comm_modify vel yes
         fix td_floor grains wall/gran granular {walls} zplane 0.0 NULL
         fix td_ends grains wall/gran granular {walls} xplane {x0:.12g} {x1:.12g}
-        fix td_gravity grains gravity 9.81 vector 0 0 -1
+        fix td_gravity grains gravity {gravity:.12g} vector 0 0 -1
         fix td_nve grains nve/sphere
         compute td_ke grains ke
         compute td_contacts grains contact/atom
@@ -352,14 +356,16 @@ def prepare_bed(
             DENSE_SETTLE_FRICTION * dem.friction if spec.packing is Packing.DENSE else dem.friction
         )
         settle_rolling = 0.0 if spec.packing is Packing.DENSE else dem.rolling_friction
-        setup_interactions(lmp, box, dem, kind, friction=settle_friction, rolling=settle_rolling)
-        t_fall = math.sqrt(2.0 * insert_height / 9.81)
+        setup_interactions(lmp, box, dem, kind, friction=settle_friction, rolling=settle_rolling,
+                           gravity=spec.gravity)  # fmt: skip
+        g = spec.gravity
+        t_fall = math.sqrt(2.0 * insert_height / g)
         t_max = (
             spec.max_settle_time
             if spec.max_settle_time is not None
-            else 10.0 * t_fall + 200 * math.sqrt(d / 9.81)
+            else 10.0 * t_fall + 200 * math.sqrt(d / g)
         )
-        mgd = dem.grain_density * grain_volume * 9.81 * d
+        mgd = dem.grain_density * grain_volume * g * d
         t_settled = _settle(lmp, dt, t_fall, t_max, n_grains, mgd, progress, 0.0, 0.7)
         if spec.packing is Packing.DENSE:
             _set_friction(lmp, dem, dem.friction, dem.rolling_friction)
@@ -455,7 +461,7 @@ def measure_bed(bed: Bed, mgd: float | None = None) -> None:
     n = bed.grain_count
     ke = float(lmp.extract_compute("td_ke", 0, 0))
     if mgd is None:
-        mgd = bed.dem.grain_density * math.pi / 6.0 * d**3 * 9.81 * d
+        mgd = bed.dem.grain_density * math.pi / 6.0 * d**3 * bed.spec.gravity * d
     bed.kinetic_per_grain = ke / n / mgd
 
 
@@ -549,7 +555,7 @@ def load_bed(path: str | Path) -> Bed:
         lmp.command("atom_modify map array")
         lmp.command(f"read_restart {p}")
         setup_interactions(lmp, box, dem, spec.kind, friction=dem.friction, rolling=dem.rolling_friction,
-                           )  # fmt: skip
+                           gravity=spec.gravity)  # fmt: skip
         lmp.command("run 0 post no")  # restores the fixes' per-atom state (contact histories)
     except BaseException:
         lmp.close()

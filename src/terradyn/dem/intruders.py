@@ -1,7 +1,7 @@
 """Rigid intruders in a DEM bed: terradyn bodies as clumps of wall spheres moved at a prescribed velocity.
 
 A body's outline (:meth:`terradyn.geometry.Body.outline`, the same outline MPM resolves) is sampled
-every quarter grain diameter and extruded, in rows half a grain apart, across the bed (slab: its
+every quarter grain diameter and extruded, in rows 0.35 grain apart, across the bed (slab: its
 whole periodic thickness; 3d: the body's width) with spheres of half a grain diameter, so close
 that no grain passes between them.
 Body spheres do not interact with each other (``neigh_modify exclude``); LAMMPS's ``fix move`` moves
@@ -62,7 +62,7 @@ def body_spheres(
     wx = x + c * p[:, 0] + s * p[:, 1]
     wz = surface + z - s * p[:, 0] + c * p[:, 1]
     y0, y1 = y_range
-    ny = max(1, math.ceil((y1 - y0) / d_w))  # touching across: the gaps are far below a grain
+    ny = max(1, math.ceil((y1 - y0) / (0.7 * d_w)))  # overlapping across, gaps far below a grain
     if periodic:
         ys = y0 + (np.arange(ny) + 0.5) * (y1 - y0) / ny
     else:

@@ -13,6 +13,7 @@ reported for the wheel's width.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -84,7 +85,8 @@ def run_wheel(
 ) -> DEMWheelResult:
     """Roll ``body`` at spin ``omega`` [rad/s] and slip ``slip`` under ``load`` [N] for ``duration`` [s].
 
-    The wheel starts at x = -travel/2 (travel = V duration) and ends near x = +travel/2."""
+    The wheel starts at x = -travel/2 (travel = V duration) and ends near x = +travel/2. Gravity is
+    that of the bed (``BedSpec.gravity``); the wheel's mass is ``load / gravity``."""
     r = _radius(body)
     load = check_positive("load", load)
     omega = check_finite("omega", omega)
@@ -94,14 +96,13 @@ def run_wheel(
     if not -1.0 <= slip < 1.0:
         raise InputError("slip", slip, "a slip in [-1, 1)")
     duration = check_positive("duration", duration)
-    if gravity != 9.81:
-        raise InputError("gravity", gravity, "9.81 [m/s^2] (the bed is settled under Earth gravity)")
     velocity = (1.0 - slip) * omega * r
     travel = abs(velocity) * duration
     dem = material.require_dem()
     d = grain_diameter if grain_diameter is not None else dem.grain_diameter
     if bed is None:
         spec = default_wheel_bed(body, travel=travel, grain_diameter=d, kind=kind, packing=packing)
+        spec = dataclasses.replace(spec, gravity=gravity)
 
         def settle(t: float, f: float) -> None:
             if progress is not None:
@@ -138,7 +139,8 @@ def _roll(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: f
     _add_atoms(lmp, pts, n0)
     scale = body.width / width
     applied = load / scale  # load on the slab's share of the wheel [N]
-    mass_atom = applied / 9.81 / len(pts)
+    g = bed.spec.gravity
+    mass_atom = applied / g / len(pts)
     density = mass_atom / (math.pi / 6.0 * d_w**3)
     xc, zc = x_start, bed.surface + z_start
     rows = max(1, round(duration / (record_interval or duration / 100.0)))
@@ -153,14 +155,14 @@ def _roll(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: f
         f"variable td_vx atom {velocity:.17g}+{omega:.17g}*(z-({zc:.17g}))",
         f"variable td_vz atom -{omega:.17g}*(x-({xc:.17g}))",
         "velocity body set v_td_vx 0.0 v_td_vz units box",
-        "fix td_wgrav body gravity 9.81 vector 0 0 -1",
+        f"fix td_wgrav body gravity {g:.17g} vector 0 0 -1",
         "fix td_rigid body rigid single force * off off on torque * off off off",
         "compute td_tqa body property/atom tqy",
         "variable td_xr equal xcm(body,x)",
         "variable td_zr equal xcm(body,z)",
         "variable td_tq atom (z-v_td_zr)*fx-(x-v_td_xr)*fz+c_td_tqa",
         # soil forces only: the atoms' forces less their weight
-        "variable td_fz atom fz+mass*9.81",
+        f"variable td_fz atom fz+mass*{g:.17g}",
         "compute td_f body reduce sum fx v_td_fz v_td_tq",
         f"fix td_avg all ave/time 1 {chunk} {chunk} c_td_f[1] c_td_f[2] c_td_f[3]",
     ):
