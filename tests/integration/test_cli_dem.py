@@ -157,3 +157,21 @@ def test_dem_wheel_bad_input_is_one_line(run_cli, args, needle):
     code, _, err = run_cli("dem", "wheel", *args)
     assert code == 1, err
     assert needle in err and len(err.strip().splitlines()) == 1
+
+
+def test_dem_intrude_resumes_a_checkpoint(run_cli, soft_medium, tmp_path):
+    """A stopped run (its checkpoint written) continues with --resume and removes the checkpoint."""
+    from terradyn import materials
+    from terradyn.dem import run_intrusion
+    from terradyn.geometry import Plate
+
+    ckpt = tmp_path / "run.restart"
+    with pytest.raises(KeyboardInterrupt):
+        run_intrusion(Plate(0.012, 0.01), materials.get(soft_medium), depth=0.004, speed=0.04,
+                      grain_diameter=0.002, packing="loose", checkpoint_path=ckpt,
+                      stop_after_rows=5)  # fmt: skip
+    code, out, err = run_cli("dem", *PLATE, "--material", soft_medium, "--checkpoint", str(ckpt), "--resume",
+                             "--format", "json")  # fmt: skip
+    assert code == 0, err
+    assert json.loads(out)["force_z_N"] > 0
+    assert not ckpt.exists()
