@@ -12,7 +12,8 @@
 
 Mesh facets the medium cannot reach are culled first, as by default (``wheel_contact_mesh``: the
 40 000 rim facets stay at 0 deg, the rim and one side wall, 45 000, at a slip angle; once per wheel and
-sign of the slip angle in each process, about 1 s). Each is run on 2 local worker processes (``scheduler="processes"``, one numba thread each) and, for
+sign of the slip angle in each process, about 1 s). Each is run on 2 local worker processes
+(``scheduler="processes"``, one numba thread each) and, for
 the per-run cost, serially on a 43-run subset in this process. Printed: wall seconds and runs per
 second. Warm numba cache assumed (``terradyn warmup``); worker start-up is included in the 2-core time.
 """

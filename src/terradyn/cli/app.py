@@ -24,12 +24,12 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "mpm": ("mpm_cmd", "app", "Plane-strain MPM continuum runs: intrusion and wheels."),
     "dem": ("dem_cmd", "app", "Discrete-element (LAMMPS) reference runs: intrusion and wheels (dem extra)."),
     "calibrate": ("calibrate_cmd", "app", "Fit RFT, Bekker or MPM parameters to measurements."),
-    "replay": ("replay_cmd", "replay", "Predict a table of single-wheel runs with any terrain model and compare."),
+    "replay": ("replay_cmd", "replay", "Predict a table of single-wheel runs with a terrain model; compare."),
     "study": ("study_cmd", "app", "Reproducible studies (thesis experiments)."),
     "optimize": ("optimize_cmd", "app", "Design optimisation (flapped wheels)."),
     "validate": ("validate_cmd", "validate", "Check the models against invariants and reference values."),
     "demo": ("demo_cmd", "demo", "Run the headline study into a folder."),
-    "reproduce": ("reproduce_cmd", "reproduce", "The thesis items of chapters 3-9 as one HTML/Markdown report."),
+    "reproduce": ("reproduce_cmd", "reproduce", "Thesis chapters 3-9 as one HTML/Markdown report."),
     "warmup": ("warmup_cmd", "warmup", "Compile and cache every numerical kernel (run once after install)."),
 }
 
