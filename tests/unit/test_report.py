@@ -44,6 +44,21 @@ def test_rerun_reuses_the_cache(quick_report):
     assert rows_to_run(folder, quick=False)  # full runs are cached separately
 
 
+def test_a_row_computed_by_other_code_is_not_reused(quick_report, tmp_path):
+    """The cache is keyed on the package's source, not only its version: an edit reruns the rows."""
+    import shutil
+
+    folder, _ = quick_report
+    copy = tmp_path / "copy"
+    shutil.copytree(folder, copy)
+    key, model = units_for(ITEMS)[0]
+    path = cache_path(copy, key, model, True)
+    data = json.loads(path.read_text())
+    assert data["code"]
+    path.write_text(json.dumps({**data, "code": "0" * 64}))
+    assert rows_to_run(copy, quick=True) == [(key, model)]
+
+
 def test_interrupted_run_keeps_finished_rows(tmp_path, monkeypatch):
     import terradyn.report.build as build
 

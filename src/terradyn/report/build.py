@@ -10,6 +10,8 @@ written together at the end through the enclosing :func:`terradyn.io.output_set`
 from __future__ import annotations
 
 import base64
+import functools
+import hashlib
 import io
 import json
 import os
@@ -26,7 +28,16 @@ import numpy as np
 from ..errors import InputError
 from .registry import CHAPTERS, ITEMS, ThesisItem, row_for, rows_of
 
-__all__ = ["ReportRun", "cache_path", "package_versions", "reproduce", "rows_to_run", "run_unit", "units_for"]
+__all__ = [
+    "ReportRun",
+    "cache_path",
+    "code_fingerprint",
+    "package_versions",
+    "reproduce",
+    "rows_to_run",
+    "run_unit",
+    "units_for",
+]
 
 CACHE_FOLDER = "cache"
 
@@ -160,6 +171,7 @@ def run_unit(task: tuple[str, str, bool, str]) -> dict[str, Any]:
         "quick": quick,
         "status": "ran",
         "terradyn": __version__,
+        "code": code_fingerprint(),
         "wall_time_s": wall,
         "figures": {name: _png(fig) for name, fig in out.figures.items()},
         "settings": _json_safe(out.settings),
@@ -181,7 +193,22 @@ def _cached(folder: Path, key: str, model: str, quick: bool) -> dict[str, Any] |
         return None
     if not isinstance(data, dict) or data.get("terradyn") != __version__ or data.get("status") != "ran":
         return None
+    if data.get("code") != code_fingerprint():  # the package changed since the row ran
+        return None
     return data
+
+
+@functools.cache
+def code_fingerprint() -> str:
+    """SHA-256 of terradyn's own source and data files (paths and contents): a cached row is reused
+    only by the code that computed it, version bump or not."""
+    root = Path(__file__).resolve().parent.parent
+    digest = hashlib.sha256()
+    for path in sorted(root.rglob("*")):
+        if path.suffix in (".py", ".toml", ".csv", ".json") and "__pycache__" not in path.parts:
+            digest.update(str(path.relative_to(root)).encode())
+            digest.update(path.read_bytes())
+    return digest.hexdigest()
 
 
 def rows_to_run(
