@@ -259,6 +259,14 @@ def _root_help() -> str:
     return "\n".join(lines) + "\n"
 
 
+def _close_figures() -> None:
+    """A command's figures are written by then: close them, so that commands run one after another
+    in one process (tests, notebooks calling main) do not pile figures up."""
+    pyplot = sys.modules.get("matplotlib.pyplot")
+    if pyplot is not None:
+        pyplot.close("all")
+
+
 def _guarded(args: list[str]) -> int:
     """Run and turn every exception except interrupts into (one line, exit code)."""
     if args == ["--version"]:  # answered without importing the command line framework
@@ -274,7 +282,10 @@ def _guarded(args: list[str]) -> int:
     except KeyboardInterrupt:
         raise
     try:
-        return _run(args)
+        try:
+            return _run(args)
+        finally:
+            _close_figures()
     except KeyboardInterrupt:
         raise
     except InputError as exc:
