@@ -94,9 +94,10 @@ class _Common:
 #: still falls with refinement at about first order; 16 cells is the finest level of that study).
 INTRUSION_CELLS_ACROSS = 16
 #: Default cells across a wheel's diameter. Measured on the 0.13 m x 0.16 m wheel in MS under 130 N at
-#: slip 0.3 (docs/mpm.md): sinkage 8.5 / 19.6 / 16.6 mm at 16 / 24 / 32 cells across, drive torque
-#: 5.30 / 5.39 / 5.43 N m, drawbar pull -1.9 / -2.0 / -0.7 N. At 16 cells the sinkage was half the
-#: fine value, so the default is 32.
+#: slip 0.3 (docs/mpm.md) at 16 / 24 / 32 cells across: sinkage below the bed surface 0.5 / 16.6 /
+#: 16.6 mm (runs made before the bed snapped to whole cells, corrected for their surface offsets of
+#: -8 / -3 / 0 mm), drive torque 5.30 / 5.39 / 5.43 N m, drawbar pull -1.9 / -2.0 / -0.7 N. At 16 cells
+#: the wheel barely sank, so the default is 32.
 WHEEL_CELLS_ACROSS = 32
 #: Default drive of a spinning wheel [rad of rotation]. Measured on the wheel above at 8 mm cells: the
 #: pull averaged over 0.5 rad windows starting 1, 1.5, 1.9, 2.25 and 3 rad into the drive is 1.2, 0.2,
