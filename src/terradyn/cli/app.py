@@ -259,12 +259,18 @@ def _root_help() -> str:
     return "\n".join(lines) + "\n"
 
 
-def _close_figures() -> None:
-    """A command's figures are written by then: close them, so that commands run one after another
-    in one process (tests, notebooks calling main) do not pile figures up."""
+def _open_figures() -> set[int]:
+    pyplot = sys.modules.get("matplotlib.pyplot")
+    return set() if pyplot is None else set(pyplot.get_fignums())
+
+
+def _close_figures(before: set[int]) -> None:
+    """A command's figures are written by then: close the ones it opened, so that commands run one
+    after another in one process (tests, notebooks calling main) do not pile figures up."""
     pyplot = sys.modules.get("matplotlib.pyplot")
     if pyplot is not None:
-        pyplot.close("all")
+        for number in set(pyplot.get_fignums()) - before:
+            pyplot.close(number)
 
 
 def _guarded(args: list[str]) -> int:
@@ -281,11 +287,12 @@ def _guarded(args: list[str]) -> int:
         from ..errors import ExitCode, InputError, TerradynError
     except KeyboardInterrupt:
         raise
+    figures = _open_figures()
     try:
         try:
             return _run(args)
         finally:
-            _close_figures()
+            _close_figures(figures)
     except KeyboardInterrupt:
         raise
     except InputError as exc:
