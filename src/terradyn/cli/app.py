@@ -211,6 +211,23 @@ def _interrupted(exc: KeyboardInterrupt) -> int:
     return 143 if terminated else 130
 
 
+def _forget_unhandled_interrupt() -> None:
+    """Clear CPython's record of a KeyboardInterrupt that escaped a nested ``PyRun_*`` call.
+
+    An interrupt that lands while an import runs code through ``PyRun_*`` (measured: during the
+    command-line framework's import, about 0.4 s after start) sets the interpreter's "unhandled
+    KeyboardInterrupt" flag even though this module handles the exception; at exit the interpreter
+    then kills itself with SIGINT (exit status -2 instead of the 130 printed). Each ``PyRun_*`` call
+    clears the flag first, so an empty one clears it.
+    """
+    try:
+        import ctypes
+
+        ctypes.pythonapi.PyRun_SimpleString(b"")
+    except (ImportError, AttributeError, OSError):  # not CPython: no such flag
+        pass
+
+
 def main(argv: list[str] | None = None) -> None:
     """Run the CLI: every ending is one line on stderr (none on success) and an exit code."""
     previous = None
@@ -227,6 +244,7 @@ def main(argv: list[str] | None = None) -> None:
         code = _guarded(sys.argv[1:] if argv is None else list(argv))
     except KeyboardInterrupt as exc:
         code = _interrupted(exc)
+        _forget_unhandled_interrupt()
     finally:
         if previous is not None:
             try:
