@@ -8,10 +8,23 @@ import math
 import pytest
 
 from terradyn.errors import InputError
-from terradyn.plasticity import davis1968_reduced_friction_angle, moc_n_gamma, reference_entries
+from terradyn.plasticity import (
+    davis1968_reduced_friction_angle,
+    hansen1970_ngamma,
+    moc_n_gamma,
+    reference_entries,
+)
+from terradyn.plasticity import references as refs
 from terradyn.plasticity import strip_footing_reference as ref
+from terradyn.plasticity.references import KINDS, compare_n_gamma, literature_search_record
 
-KINDS = {"computed", "estimate", "approximation", "published, not retrieved"}
+
+def _row(phi_deg, base, flow, kind):
+    return next(
+        r
+        for r in reference_entries()
+        if r["phi_deg"] == phi_deg and r["base"] == base and r["flow"] == flow and r["kind"] == kind
+    )
 
 
 def test_every_entry_names_its_source_kind_and_caveats():
@@ -21,10 +34,10 @@ def test_every_entry_names_its_source_kind_and_caveats():
         assert row["kind"] in KINDS
         assert row["source"] and row["table"] and row["notes"]
         assert row["base"] in ("smooth", "rough") and row["flow"] in ("associated", "isochoric")
-        # a number only where terradyn computed it; nothing guessed for unread papers
+        # a number only where terradyn computed it or a publication was read; nothing guessed
         if row["kind"] == "published, not retrieved":
             assert row["value"] is None
-        if row["kind"] in ("computed", "estimate"):
+        if row["kind"] in ("computed", "estimate", "published", "published, secondary"):
             assert isinstance(row["value"], float) and row["value"] > 0
     covered = {(r["phi_deg"], r["base"]) for r in rows}
     assert covered == {(30.0, "smooth"), (30.0, "rough"), (34.0, "smooth"), (34.0, "rough")}
@@ -39,13 +52,28 @@ def test_computed_entries_reproduce_on_a_coarser_mesh(row):
     assert fresh == pytest.approx(row["value"], rel=3e-3)
 
 
+def test_secondary_rough_value_agrees_with_independent_numbers():
+    """Martin's rough 30 deg N_gamma (as transcribed from Han et al. 2016) against what terradyn has."""
+    rough = _row(30.0, "rough", "associated", "published, secondary")["value"]
+    smooth = _row(30.0, "smooth", "associated", "computed")["value"]
+    # Han et al. (abstract): smooth N_gamma is "half or more" of rough, and never above it
+    assert 0.5 <= smooth / rough < 1.0
+    # Hansen's formula is a fit to rough-base characteristics values: a few per cent, not a match
+    assert float(hansen1970_ngamma(math.radians(30.0))) == pytest.approx(rough, rel=0.05)
+
+
 @pytest.mark.parametrize("phi_deg", [30, 34])
-def test_smooth_reference_is_the_isochoric_estimate_below_the_associated_value(phi_deg):
+def test_smooth_reference_falls_back_on_the_davis_estimate_below_the_bound(phi_deg):
     out = ref(phi_deg, "smooth")
     json.dumps(out)  # JSON-ready, as the MPM verify command prints it
+    # no published psi = 0 value was retrieved: the reference is the reduced-angle estimate, said so
+    assert out["N_gamma_published_non_associated"] is None
     assert out["reference_kind"] == "estimate"
-    assert 0.0 < out["N_gamma_reference"] < out["N_gamma_associated"]
+    assert out["N_gamma_reference"] == out["N_gamma_davis_estimate"]
     assert "Davis" in out["reference"]
+    # the associated (exact) value bounds the isochoric one from above
+    assert out["N_gamma_upper_bound"] == out["N_gamma_associated"]
+    assert 0.0 < out["N_gamma_reference"] < out["N_gamma_upper_bound"]
     assert out["reduced_friction_angle_deg"] == pytest.approx(
         math.degrees(math.atan(math.sin(math.radians(phi_deg))))
     )
@@ -53,12 +81,76 @@ def test_smooth_reference_is_the_isochoric_estimate_below_the_associated_value(p
     assert len(out["published_non_associated"]) == 2
 
 
-def test_rough_reference_is_labelled_an_approximation_without_an_exact_value():
+def test_rough_reference_is_an_approximation_bounded_by_the_secondary_exact_value():
     out = ref(30, "rough")
     assert out["reference_kind"] == "approximation"
-    assert out["N_gamma_associated"] is None
     assert "Hansen" in out["reference"]
-    assert out["N_gamma_reference"] > ref(30, "smooth")["N_gamma_reference"]
+    assert out["N_gamma_associated"] == 14.8
+    assert out["associated_kind"] == "published, secondary"
+    assert "Han" in out["associated_reference"]
+    assert ref(30, "smooth")["N_gamma_reference"] < out["N_gamma_reference"] < out["N_gamma_upper_bound"]
+
+
+def test_rough_34_has_no_exact_value_and_no_bound():
+    out = ref(34, "rough")
+    assert out["N_gamma_associated"] is None and out["N_gamma_upper_bound"] is None
+    assert out["associated_kind"] == "published, not retrieved"
+    assert out["N_gamma_reference"] == out["N_gamma_davis_estimate"] > 0.0
+
+
+def _with_extra_rows(monkeypatch, *rows):
+    monkeypatch.setattr(refs, "_TABLE", refs._TABLE + tuple(rows))
+
+
+def _iso(value, kind):
+    return {"phi_deg": 34.0, "base": "smooth", "flow": "isochoric", "value": value, "kind": kind,
+            "source": f"test source {kind}", "table": "test table", "notes": "test fixture"}  # fmt: skip
+
+
+def test_a_published_value_replaces_the_estimate_and_keeps_it_beside(monkeypatch):
+    davis = ref(34, "smooth")["N_gamma_davis_estimate"]
+    _with_extra_rows(monkeypatch, _iso(11.0, "published, secondary"), _iso(12.0, "published"))
+    out = ref(34, "smooth")
+    # the primary publication wins over the secondary transcription
+    assert out["N_gamma_reference"] == 12.0 == out["N_gamma_published_non_associated"]
+    assert out["reference_kind"] == "published"
+    assert "test source published" in out["reference"]
+    assert out["N_gamma_davis_estimate"] == davis
+    assert len(out["published_non_associated"]) == 4
+
+
+def test_a_secondary_value_is_used_when_no_primary_one_exists(monkeypatch):
+    _with_extra_rows(monkeypatch, _iso(11.0, "published, secondary"))
+    out = ref(34, "smooth")
+    assert out["N_gamma_reference"] == 11.0
+    assert out["reference_kind"] == "published, secondary"
+
+
+def test_compare_gives_ratios_and_flags_a_value_above_the_bound():
+    smooth = ref(34, "smooth")
+    inside = compare_n_gamma(14.0, smooth)
+    assert inside["ratio_to_davis_estimate"] == pytest.approx(14.0 / smooth["N_gamma_davis_estimate"])
+    assert inside["ratio_to_reference"] == inside["ratio_to_davis_estimate"]
+    assert inside["ratio_to_upper_bound"] == pytest.approx(14.0 / 14.81)
+    assert inside["ratio_to_published"] is None
+    assert inside["exceeds_upper_bound"] is False
+    assert compare_n_gamma(1.2 * 14.8, ref(30, "rough"))["exceeds_upper_bound"] is True
+    unknown = compare_n_gamma(20.0, ref(34, "rough"))
+    assert unknown["exceeds_upper_bound"] is None and unknown["ratio_to_upper_bound"] is None
+
+
+@pytest.mark.parametrize("value", [0.0, -3.0, float("nan"), "x", None])
+def test_compare_refuses_a_bad_value(value):
+    with pytest.raises(InputError, match="N_gamma"):
+        compare_n_gamma(value, ref(34, "smooth"))
+
+
+def test_literature_record_covers_every_not_retrieved_source():
+    record = literature_search_record()
+    assert all(r["source"] and r["read"] and r["finding"] for r in record)
+    searched = {r["source"] for r in record}
+    pending = {r["source"] for r in reference_entries() if r["kind"] == "published, not retrieved"}
+    assert {s for s in pending if s.startswith(("S. Frydman", "D. Loukidis"))} <= searched
 
 
 def test_untabulated_angle_is_computed():
@@ -68,6 +160,7 @@ def test_untabulated_angle_is_computed():
         < out["N_gamma_reference"]
         < ref(34, "smooth")["N_gamma_reference"]
     )
+    assert out["N_gamma_reference"] < out["N_gamma_upper_bound"]
 
 
 @pytest.mark.parametrize(

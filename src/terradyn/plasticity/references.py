@@ -11,11 +11,20 @@ of number it is (``kind``) and the caveats (``notes``):
   flow, ``tan phi* = sin phi``, evaluated with terradyn's characteristics solver;
 * ``approximation`` - a design formula (Brinch Hansen 1970) used where no exact solution is available
   here (rough base), clearly not a reference of the same quality;
+* ``published`` - a number read in the publication itself (none so far);
+* ``published, secondary`` - a published number read in a third-party transcription that names the
+  publication and its table, not in the publication itself;
 * ``published, not retrieved`` - a value known to exist in the literature that could not be read when
   this table was written (``value`` is ``None``; never guessed).
 
+Bounds. A non-associated Mohr-Coulomb material cannot carry more than the associated material with the
+same yield surface (Radenkovic's first theorem; Drescher & Detournay 1993 show the non-associated limit
+load of translational mechanisms is lower than, or at most equal to, the associated one). So the
+associated ``N_gamma`` is an upper bound for the isochoric MPM value, which :func:`compare_n_gamma`
+checks. The Davis estimate is not a proven bound.
+
 The numbers are data, like the material TOMLs; ``tests/unit/test_plasticity_references.py`` re-computes
-the ``computed`` and ``estimate`` entries.
+the ``computed`` and ``estimate`` entries and cross-checks the secondary one.
 """
 
 from __future__ import annotations
@@ -26,7 +35,17 @@ from typing import Any
 from ..errors import InputError
 from .bearing import davis1968_reduced_friction_angle, hansen1970_ngamma, prandtl1921_nc, reissner1924_nq
 
-__all__ = ["reference_entries", "strip_footing_reference"]
+__all__ = ["compare_n_gamma", "literature_search_record", "reference_entries", "strip_footing_reference"]
+
+#: every ``kind`` a table row may have, best-sourced published kind first
+KINDS = (
+    "computed",
+    "estimate",
+    "approximation",
+    "published",
+    "published, secondary",
+    "published, not retrieved",
+)
 
 _MOC = "terradyn.plasticity.moc_n_gamma (method of characteristics, smooth base; Martin 2005 construction)"
 _DAVIS = (
@@ -35,23 +54,42 @@ _DAVIS = (
     "N_gamma(phi*) from terradyn's method of characteristics"
 )
 _HANSEN = "Brinch Hansen (1970) N_gamma = 1.5 (N_q - 1) tan(phi), DGI Bulletin 28 (design approximation)"
+_DAVIS_HANSEN = _DAVIS.replace("terradyn's method of characteristics", _HANSEN)
 _MARTIN = (
     "C. M. Martin, Exact bearing capacity calculations using the method of characteristics, "
     "Proc. 11th IACMAG, Turin, vol. 4, 441-450 (2005)"
 )
+_HAN = (
+    "D. Han, X. Xie, L. Zheng, L. Huang, The bearing capacity factor N_gamma of strip footings on "
+    "c-phi-gamma soil using the method of characteristics, SpringerPlus 5:1482 (2016), "
+    "doi:10.1186/s40064-016-3084-6"
+)
 _FB = (
     "S. Frydman, H. J. Burd, Numerical studies of bearing-capacity factor N_gamma, J. Geotech. Geoenviron. "
-    "Eng. 123 (1997) (finite elements and FLAC, smooth and rough, phi 30-45 deg, 0 <= psi <= phi)"
+    "Eng. 123(1) 20-29 (1997) (finite elements and FLAC, smooth and rough, phi 30-45 deg, 0 <= psi <= phi)"
 )
 _LS = (
     "D. Loukidis, R. Salgado, Bearing capacity of strip and circular footings in sand using finite elements, "
     "Comput. Geotech. 36, 871-879 (2009) (elastic-perfectly plastic Mohr-Coulomb, associated and "
     "non-associated flow)"
 )
+_BOUND = (
+    "upper bound: a non-associated material carries no more than the associated one with the same yield "
+    "surface (Radenkovic's first theorem; Drescher & Detournay 1993, Geotechnique 43(3) 443-456)"
+)
 _NR = "published, not retrieved"
-_NOT_RETRIEVED = (
-    "only the abstract could be read when this table was written; the non-associated (psi = 0) N_gamma "
-    "for this case is in the paper's tables/figures but was not retrieved, so no number is given"
+_FB_READ = (
+    "only the abstract could be read: plane-strain finite elements and FLAC for smooth and rough bases, "
+    "phi 30-45 deg, 0 <= psi <= phi, results given as curves of N_gamma against phi. The psi = 0 value "
+    "for this case is on those curves; neither the figure nor a table of it was retrieved, so no number "
+    "is given (a reading would have to be digitised from the figure)."
+)
+_LS_READ = (
+    "only the first page could be read: finite elements with an elastic-perfectly plastic Mohr-Coulomb "
+    "model, one associated and one non-associated series, and relationships for the bearing factors "
+    "'valid for realistic pairs of friction angle and dilatancy angle' are proposed. Neither the tables "
+    "nor the fitted relationships were on the readable page, so no number is given and the relationship "
+    "is not implemented."
 )
 
 # One row per (phi [deg], base, flow). "value" is N_gamma [-] or None.
@@ -66,35 +104,83 @@ _TABLE: tuple[dict[str, Any], ...] = (
     {"phi_deg": 34.0, "base": "smooth", "flow": "associated", "value": 14.81, "kind": "computed",
      "source": _MOC, "table": "moc_n_gamma(radians(34)), fan_count=30, ray_count=160",
      "notes": "mesh-converged to about 1e-3; no published value for 34 deg was retrieved."},
-    {"phi_deg": 30.0, "base": "rough", "flow": "associated", "value": None, "kind": _NR,
-     "source": _MARTIN, "table": "table of exact rough-footing N_gamma",
-     "notes": "terradyn's characteristics solver does not build the rough-base N_gamma field (non-centred "
-              "wedge); the research digest quotes 14.75 from memory, UNVERIFIED, so it is not used."},
+    {"phi_deg": 30.0, "base": "rough", "flow": "associated", "value": 14.8, "kind": "published, secondary",
+     "source": _MARTIN + "; as tabulated by " + _HAN,
+     "table": "Han et al. (2016) Table 2: Martin's exact rough-base N_gamma, 14.8 / 34.5 / 85.6 / 234 at "
+              "phi = 30 / 35 / 40 / 45 deg",
+     "notes": "read in a third-party transcription in public source code that quotes Han et al. (2016) "
+              "Table 2 (three significant figures); neither Han et al.'s table nor Martin's paper was read "
+              "itself. Consistent with the abstract of Han et al. (read): smooth N_gamma is 'half or more' "
+              "of rough (terradyn's smooth 7.650 / 14.8 = 0.52), and with the research digest's unverified "
+              "recollection 14.75. terradyn's characteristics solver cannot check it (no non-centred "
+              "wedge)."},
     {"phi_deg": 34.0, "base": "rough", "flow": "associated", "value": None, "kind": _NR,
-     "source": _MARTIN, "table": "table of exact rough-footing N_gamma", "notes": "as for 30 deg."},
+     "source": _MARTIN, "table": "table of exact rough-footing N_gamma",
+     "notes": "34 deg is not among the angles of the transcribed table (30 / 35 deg: 14.8 / 34.5, secondary, "
+              "see the 30 deg row); N_gamma grows with phi, so the exact value lies between them, but an "
+              "interpolated number is not a reference and none is given."},
     # --- isochoric flow (psi = 0), published numerical values ------------------------------------
     *(
         {"phi_deg": phi, "base": base, "flow": "isochoric", "value": None, "kind": _NR,
-         "source": src, "table": "non-associated N_gamma tables/figures", "notes": _NOT_RETRIEVED}
+         "source": src, "table": "non-associated N_gamma curves / tables", "notes": read}
         for phi in (30.0, 34.0)
         for base in ("smooth", "rough")
-        for src in (_FB, _LS)
+        for src, read in ((_FB, _FB_READ), (_LS, _LS_READ))
     ),
     # --- isochoric flow (psi = 0), reduced-angle estimates ---------------------------------------
     {"phi_deg": 30.0, "base": "smooth", "flow": "isochoric", "value": 4.424, "kind": "estimate",
      "source": _DAVIS, "table": "phi* = atan(sin 30 deg) = 26.57 deg; moc_n_gamma(phi*)",
      "notes": "an estimate: the reduced-angle rule is exact only for translational mechanisms, not for "
-              "the log-spiral footing mechanism; check it against the published FE values when available."},
+              "the log-spiral footing mechanism, and it is not a proven bound; check it against the "
+              "published FE values when available."},
     {"phi_deg": 34.0, "base": "smooth", "flow": "isochoric", "value": 6.726, "kind": "estimate",
      "source": _DAVIS, "table": "phi* = atan(sin 34 deg) = 29.21 deg; moc_n_gamma(phi*)",
      "notes": "an estimate, see the 30 deg entry."},
     {"phi_deg": 30.0, "base": "rough", "flow": "isochoric", "value": None, "kind": "approximation",
-     "source": _DAVIS + "; N_gamma(phi*) from " + _HANSEN, "table": "phi* = 26.57 deg",
+     "source": _DAVIS_HANSEN, "table": "phi* = 26.57 deg",
      "notes": "value filled at run time from hansen1970_ngamma(phi*): a design approximation (Hansen's "
               "formula is a fit to rough-base characteristics values), not an exact solution."},
     {"phi_deg": 34.0, "base": "rough", "flow": "isochoric", "value": None, "kind": "approximation",
-     "source": _DAVIS + "; N_gamma(phi*) from " + _HANSEN, "table": "phi* = 29.21 deg",
+     "source": _DAVIS_HANSEN, "table": "phi* = 29.21 deg",
      "notes": "as for 30 deg."},
+)
+# fmt: on
+
+# Sources searched for published psi = 0 strip-footing N_gamma and what of them could be read.
+# fmt: off
+_SEARCHED: tuple[dict[str, str], ...] = (
+    {"source": _FB, "read": "abstract", "finding": _FB_READ},
+    {"source": _LS, "read": "first page", "finding": _LS_READ},
+    {"source": "Yin, Wang & Selvadurai (2001), influence of non-associativity on the bearing capacity of a "
+               "strip footing (bibliographic details not verified)",
+     "read": "nothing", "finding": "no copy found; no number."},
+    {"source": "K. Krabbenhoft, M. R. Karim, A. V. Lyamin, S. W. Sloan, Associated computational plasticity "
+               "schemes for nonassociated frictional materials, Int. J. Numer. Meth. Engng 90, 1089-1117 "
+               "(2012), doi:10.1002/nme.3358",
+     "read": "summary and first page",
+     "finding": "strip-footing examples are in the body, which was not readable; no number."},
+    {"source": "M. Hamlaoui, A. Oueslati, G. de Saxce, A bipotential approach for plastic limit loads of "
+               "strip footings with nonassociated materials, Int. J. Non-Linear Mech. 90, 1-10 (2017)",
+     "read": "abstract",
+     "finding": "lower estimate from characteristics and an upper quasi-bound from the bipotential, "
+                "'compared to the formulae and numerical results provided in literature'; the comparison "
+                "tables were not readable; no number."},
+    {"source": "Erickson & Drescher (2002), circular footings (cited for the effect of base roughness on "
+               "N_gamma by J. Kumar, EJGE 2005, whose abstract and introduction were read)",
+     "read": "nothing", "finding": "circular footings, not a strip reference; no copy found."},
+    {"source": "A. Drescher, E. Detournay, translational failure mechanisms for the limit load of "
+               "associative and non-associative materials, Geotechnique 43(3) 443-456 (1993)",
+     "read": "abstract",
+     "finding": "for non-associative materials with a coaxial flow rule the limit load of translational "
+                "mechanisms is lower than the associative one (with a non-coaxial rule it may equal it): "
+                "the basis of the upper bound used here; no footing N_gamma."},
+    {"source": "A. Alencar, R. Galindo, C. Olalla, S. Melentijevic, Bearing capacity of footings on rock "
+               "masses using flow laws, Appl. Sci. 11(24) 11829 (2021)",
+     "read": "abstract and introduction",
+     "finding": "finite differences, associative vs psi = 0 on Hoek-Brown rock masses; the introduction "
+                "says Michalowski and Drescher & Detournay found the flow-rule effect 'very substantial for "
+                "large friction angle values'; its correction coefficient is for weightless rock masses, "
+                "not N_gamma of sand."},
 )
 # fmt: on
 
@@ -105,16 +191,41 @@ def reference_entries() -> list[dict[str, Any]]:
     return [dict(row) for row in _TABLE]
 
 
+def literature_search_record() -> list[dict[str, str]]:
+    """The sources searched for a published isochoric strip-footing ``N_gamma`` (copies): ``source``,
+    ``read`` (what of it could be read) and ``finding``. None gave a number so far."""
+    return [dict(row) for row in _SEARCHED]
+
+
+def _rows(phi_deg: float, base: str, flow: str) -> list[dict[str, Any]]:
+    return [
+        dict(row)
+        for row in _TABLE
+        if abs(row["phi_deg"] - phi_deg) < 1e-9 and row["base"] == base and row["flow"] == flow
+    ]
+
+
 def _lookup(phi_deg: float, base: str, flow: str, kind: str) -> dict[str, Any] | None:
-    for row in _TABLE:
-        if (
-            abs(row["phi_deg"] - phi_deg) < 1e-9
-            and row["base"] == base
-            and row["flow"] == flow
-            and row["kind"] == kind
-        ):
-            return dict(row)
+    return next((row for row in _rows(phi_deg, base, flow) if row["kind"] == kind), None)
+
+
+def _best_published(phi_deg: float, base: str, flow: str) -> dict[str, Any] | None:
+    """The published row with a value, primary before secondary; ``None`` when there is none."""
+    for kind in ("published", "published, secondary"):
+        for row in _rows(phi_deg, base, flow):
+            if row["kind"] == kind and row["value"] is not None:
+                return row
     return None
+
+
+def _check_angle(phi_deg: Any) -> float:
+    try:
+        phi_d = float(phi_deg)
+    except (TypeError, ValueError):
+        raise InputError("phi", phi_deg, "a friction angle between 10 and 45 [deg]") from None
+    if not (math.isfinite(phi_d) and 10.0 <= phi_d <= 45.0):
+        raise InputError("phi", phi_deg, "a friction angle between 10 and 45 [deg]")
+    return phi_d
 
 
 def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
@@ -122,15 +233,18 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
 
     Returns a JSON-ready dict:
 
-    * ``N_gamma_reference`` - the isochoric (``psi = 0``) reference [-]: the reduced-angle estimate
-      from the characteristics solver (smooth) or Hansen's approximation at ``phi*`` (rough);
-    * ``reference`` - where it comes from, ``reference_kind`` - ``estimate`` or ``approximation``;
-    * ``N_gamma_associated`` [-] (``None`` when not available: rough base) with
-      ``associated_reference``;
+    * ``N_gamma_reference`` - the isochoric (``psi = 0``) reference [-]: a published value when the table
+      has one for the case, otherwise the reduced-angle estimate (``N_gamma_davis_estimate``);
+    * ``reference`` - where it comes from, ``reference_kind`` - ``published``, ``published, secondary``,
+      ``estimate`` (smooth: characteristics at ``phi*``) or ``approximation`` (rough: Hansen at ``phi*``);
+    * ``N_gamma_published_non_associated`` [-] - the published isochoric value or ``None``;
+    * ``N_gamma_davis_estimate`` [-] with ``davis_estimate_kind`` and ``davis_estimate_reference``;
+    * ``N_gamma_associated`` [-] (``None`` when not available) with ``associated_reference`` and
+      ``associated_kind``; ``N_gamma_upper_bound`` [-] - the same number as a bound on the isochoric
+      value (``upper_bound_reference``), ``None`` when unknown;
     * ``reduced_friction_angle_deg`` - ``phi*``; ``N_q``, ``N_c`` at ``phi``;
     * ``approximations`` - Hansen, Vesic, Meyerhof, EC7 ``N_gamma`` at ``phi`` (context only);
-    * ``published_non_associated`` - the literature entries (Frydman & Burd 1997, Loukidis &
-      Salgado 2009) with their status.
+    * ``published_non_associated`` - the literature entries for the case with their status.
 
     Tabulated for 30 and 34 deg; other angles in [10, 45] deg are computed on the fly (about a second
     per characteristics solve).
@@ -138,12 +252,7 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
     from . import bearing
     from .moc import moc_n_gamma
 
-    try:
-        phi_d = float(phi_deg)
-    except (TypeError, ValueError):
-        raise InputError("phi", phi_deg, "a friction angle between 10 and 45 [deg]") from None
-    if not (math.isfinite(phi_d) and 10.0 <= phi_d <= 45.0):
-        raise InputError("phi", phi_deg, "a friction angle between 10 and 45 [deg]")
+    phi_d = _check_angle(phi_deg)
     if base not in ("smooth", "rough"):
         raise InputError("base", base, "'smooth' or 'rough'")
     phi = math.radians(phi_d)
@@ -153,25 +262,44 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
         "base": base,
         "reduced_friction_angle_deg": math.degrees(phi_star),
     }
+    # the reduced-angle (Davis) estimate, and the associated value
     if base == "smooth":
         row = _lookup(phi_d, base, "isochoric", "estimate")
-        value = row["value"] if row else moc_n_gamma(phi_star).n_gamma
-        out.update(N_gamma_reference=value, reference=_DAVIS, reference_kind="estimate")
-        assoc = _lookup(phi_d, base, "associated", "computed")
+        davis = row["value"] if row else moc_n_gamma(phi_star).n_gamma
+        davis_kind, davis_ref = "estimate", _DAVIS
+        assoc_row = _lookup(phi_d, base, "associated", "computed")
+        assoc = assoc_row["value"] if assoc_row else moc_n_gamma(phi).n_gamma
+        assoc_ref, assoc_kind = _MOC, "computed"
+    else:
+        davis = float(hansen1970_ngamma(phi_star))
+        davis_kind, davis_ref = "approximation", _DAVIS_HANSEN
+        assoc_row = _best_published(phi_d, base, "associated")
+        if assoc_row:
+            assoc, assoc_ref, assoc_kind = assoc_row["value"], assoc_row["source"], assoc_row["kind"]
+        else:
+            assoc = None
+            assoc_ref = _MARTIN + " (exact value not retrieved; not computed by terradyn)"
+            assoc_kind = _NR
+    published = _best_published(phi_d, base, "isochoric")
+    if published:
         out.update(
-            N_gamma_associated=assoc["value"] if assoc else moc_n_gamma(phi).n_gamma,
-            associated_reference=_MOC,
+            N_gamma_reference=published["value"],
+            reference=f"{published['source']} ({published['table']})",
+            reference_kind=published["kind"],
         )
     else:
-        out.update(
-            N_gamma_reference=float(hansen1970_ngamma(phi_star)),
-            reference=_DAVIS.replace("N_gamma(phi*) from terradyn's method of characteristics", "")
-            + "N_gamma(phi*) from "
-            + _HANSEN,
-            reference_kind="approximation",
-            N_gamma_associated=None,
-            associated_reference=_MARTIN + " (exact value not retrieved; not computed by terradyn)",
-        )
+        out.update(N_gamma_reference=davis, reference=davis_ref, reference_kind=davis_kind)
+    out.update(
+        N_gamma_published_non_associated=published["value"] if published else None,
+        N_gamma_davis_estimate=davis,
+        davis_estimate_kind=davis_kind,
+        davis_estimate_reference=davis_ref,
+        N_gamma_associated=assoc,
+        associated_reference=assoc_ref,
+        associated_kind=assoc_kind,
+        N_gamma_upper_bound=assoc,
+        upper_bound_reference=_BOUND,
+    )
     out["N_q"] = float(reissner1924_nq(phi))
     out["N_c"] = float(prandtl1921_nc(phi))
     out["approximations"] = {
@@ -182,10 +310,34 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
     }
     out["published_non_associated"] = [
         {"source": r["source"], "value": r["value"], "kind": r["kind"], "notes": r["notes"]}
-        for r in _TABLE
-        if abs(r["phi_deg"] - phi_d) < 1e-9
-        and r["base"] == base
-        and r["flow"] == "isochoric"
-        and r["kind"].startswith("published")
+        for r in _rows(phi_d, base, "isochoric")
+        if r["kind"].startswith("published")
     ]
     return out
+
+
+def compare_n_gamma(n_gamma: float, reference: dict[str, Any]) -> dict[str, Any]:
+    """Ratios of a measured (MPM) ``n_gamma`` [-] to the numbers of a :func:`strip_footing_reference`
+    result: ``ratio_to_reference``, ``ratio_to_published`` (``None`` without a published value),
+    ``ratio_to_davis_estimate``, ``ratio_to_upper_bound`` and ``exceeds_upper_bound`` (``None`` when the
+    bound is unknown). A value above the upper bound cannot be a non-associated collapse load."""
+    try:
+        value = float(n_gamma)
+    except (TypeError, ValueError):
+        raise InputError("N_gamma", n_gamma, "a positive bearing factor [-]") from None
+    if not (math.isfinite(value) and value > 0.0):
+        raise InputError("N_gamma", n_gamma, "a positive bearing factor [-]")
+
+    def ratio(key: str) -> float | None:
+        ref = reference.get(key)
+        return value / float(ref) if ref else None
+
+    bound = reference.get("N_gamma_upper_bound")
+    return {
+        "N_gamma": value,
+        "ratio_to_reference": ratio("N_gamma_reference"),
+        "ratio_to_published": ratio("N_gamma_published_non_associated"),
+        "ratio_to_davis_estimate": ratio("N_gamma_davis_estimate"),
+        "ratio_to_upper_bound": ratio("N_gamma_upper_bound"),
+        "exceeds_upper_bound": None if not bound else value > float(bound),
+    }
