@@ -16,7 +16,12 @@ from terradyn.plasticity import (
 )
 from terradyn.plasticity import references as refs
 from terradyn.plasticity import strip_footing_reference as ref
-from terradyn.plasticity.references import KINDS, compare_n_gamma, literature_search_record
+from terradyn.plasticity.references import (
+    KINDS,
+    compare_n_gamma,
+    cone_plane_strain_friction_angle,
+    literature_search_record,
+)
 
 
 def _row(phi_deg, base, flow, kind):
@@ -33,7 +38,8 @@ def test_every_entry_names_its_source_kind_and_caveats():
     for row in rows:
         assert row["kind"] in KINDS
         assert row["source"] and row["table"] and row["notes"]
-        assert row["base"] in ("smooth", "rough") and row["flow"] in ("associated", "isochoric")
+        assert row["base"] in ("smooth", "rough")
+        assert row["flow"] in ("associated", "associated cone", "isochoric")
         # a number only where terradyn computed it or a publication was read; nothing guessed
         if row["kind"] == "published, not retrieved":
             assert row["value"] is None
@@ -48,8 +54,47 @@ def test_computed_entries_reproduce_on_a_coarser_mesh(row):
     phi = math.radians(row["phi_deg"])
     if row["flow"] == "isochoric":
         phi = davis1968_reduced_friction_angle(phi, 0.0)
+    elif row["flow"] == "associated cone":
+        phi = cone_plane_strain_friction_angle(phi)
     fresh = moc_n_gamma(phi, fan_count=16, ray_count=80).n_gamma
     assert fresh == pytest.approx(row["value"], rel=3e-3)
+
+
+def _plane_strain_yield_angle(phi_deg, *, associated):
+    """Mohr-Coulomb angle of the cone sqrt(J2) = sin(phi) p at plane-strain yield, found numerically:
+    sigma_2 from d f / d sigma_2 = 0 (associated) or from isochoric flow (sigma_2 = mean of the others)."""
+    from scipy.optimize import brentq
+
+    mu = math.sin(math.radians(phi_deg))
+
+    def f(s2, d):  # sigma_1 = 1 + d, sigma_3 = 1 - d
+        stress = [1.0 + d, s2, 1.0 - d]
+        p = sum(stress) / 3.0
+        return math.sqrt(0.5 * sum((x - p) ** 2 for x in stress)) - mu * p
+
+    def at_yield(d):
+        if not associated:
+            return f(1.0, d)
+        h = 1e-7
+        s2 = brentq(lambda x: (f(x + h, d) - f(x - h, d)) / (2 * h), -5.0, 5.0)
+        return f(s2, d)
+
+    return math.degrees(math.asin(brentq(at_yield, 1e-6, 0.99)))
+
+
+@pytest.mark.parametrize("phi_deg", [20.0, 30.0, 34.0, 40.0])
+def test_cone_angle_is_the_associated_plane_strain_strength_of_the_mpm_cone(phi_deg):
+    closed = math.degrees(cone_plane_strain_friction_angle(math.radians(phi_deg)))
+    assert closed == pytest.approx(_plane_strain_yield_angle(phi_deg, associated=True), abs=1e-6)
+    # with isochoric flow the same cone is Mohr-Coulomb phi: the MPM's identification
+    assert _plane_strain_yield_angle(phi_deg, associated=False) == pytest.approx(phi_deg, abs=1e-9)
+    assert closed > phi_deg
+
+
+@pytest.mark.parametrize("phi", [0.0, -0.1, math.radians(61.0), float("nan")])
+def test_cone_angle_refuses_angles_outside_its_range(phi):
+    with pytest.raises(InputError, match="friction_angle"):
+        cone_plane_strain_friction_angle(phi)
 
 
 def test_secondary_rough_value_agrees_with_independent_numbers():
@@ -73,7 +118,7 @@ def test_smooth_reference_falls_back_on_the_davis_estimate_below_the_bound(phi_d
     assert "Davis" in out["reference"]
     # the associated (exact) value bounds the isochoric one from above
     assert out["N_gamma_upper_bound"] == out["N_gamma_associated"]
-    assert 0.0 < out["N_gamma_reference"] < out["N_gamma_upper_bound"]
+    assert 0.0 < out["N_gamma_reference"] < out["N_gamma_upper_bound"] < out["N_gamma_upper_bound_cone"]
     assert out["reduced_friction_angle_deg"] == pytest.approx(
         math.degrees(math.atan(math.sin(math.radians(phi_deg))))
     )
@@ -89,6 +134,7 @@ def test_rough_reference_is_an_approximation_bounded_by_the_secondary_exact_valu
     assert out["associated_kind"] == "published, secondary"
     assert "Han" in out["associated_reference"]
     assert ref(30, "smooth")["N_gamma_reference"] < out["N_gamma_reference"] < out["N_gamma_upper_bound"]
+    assert out["N_gamma_upper_bound_cone"] is None  # no rough characteristics solution in terradyn
 
 
 def test_rough_34_has_no_exact_value_and_no_bound():
@@ -134,6 +180,9 @@ def test_compare_gives_ratios_and_flags_a_value_above_the_bound():
     assert inside["ratio_to_upper_bound"] == pytest.approx(14.0 / 14.81)
     assert inside["ratio_to_published"] is None
     assert inside["exceeds_upper_bound"] is False
+    assert inside["ratio_to_upper_bound_cone"] == pytest.approx(14.0 / 21.71)
+    assert inside["exceeds_upper_bound_cone"] is False
+    assert compare_n_gamma(22.0, smooth)["exceeds_upper_bound_cone"] is True
     assert compare_n_gamma(1.2 * 14.8, ref(30, "rough"))["exceeds_upper_bound"] is True
     unknown = compare_n_gamma(20.0, ref(34, "rough"))
     assert unknown["exceeds_upper_bound"] is None and unknown["ratio_to_upper_bound"] is None
@@ -160,7 +209,13 @@ def test_untabulated_angle_is_computed():
         < out["N_gamma_reference"]
         < ref(34, "smooth")["N_gamma_reference"]
     )
-    assert out["N_gamma_reference"] < out["N_gamma_upper_bound"]
+    assert out["N_gamma_reference"] < out["N_gamma_upper_bound"] < out["N_gamma_upper_bound_cone"]
+
+
+def test_cone_bound_is_left_out_beyond_the_solver_range():
+    out = ref(45.0, "smooth")
+    assert out["cone_plane_strain_angle_deg"] > 50.0
+    assert out["N_gamma_upper_bound_cone"] is None
 
 
 @pytest.mark.parametrize(

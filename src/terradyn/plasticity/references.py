@@ -17,11 +17,18 @@ of number it is (``kind``) and the caveats (``notes``):
 * ``published, not retrieved`` - a value known to exist in the literature that could not be read when
   this table was written (``value`` is ``None``; never guessed).
 
-Bounds. A non-associated Mohr-Coulomb material cannot carry more than the associated material with the
-same yield surface (Radenkovic's first theorem; Drescher & Detournay 1993 show the non-associated limit
-load of translational mechanisms is lower than, or at most equal to, the associated one). So the
-associated ``N_gamma`` is an upper bound for the isochoric MPM value, which :func:`compare_n_gamma`
-checks. The Davis estimate is not a proven bound.
+Bounds. A non-associated material cannot carry more than the associated material with the same yield
+surface (Radenkovic's first theorem; Drescher & Detournay 1993 show the non-associated limit load of
+translational mechanisms is lower than, or at most equal to, the associated one). Two bounds follow:
+
+* for the reference idealisation, Mohr-Coulomb ``phi`` with ``psi = 0``: the associated ``N_gamma(phi)``
+  (``N_gamma_upper_bound``); no admissible isochoric reference value lies above it;
+* for the MPM material itself, a Drucker-Prager cone ``sqrt(J2) = sin(phi) p`` with isochoric flow (it
+  equals Mohr-Coulomb ``phi`` only where the plane-strain flow is isochoric, ``sigma_2`` the mean of the
+  other two): the associated cone, whose plane-strain strength is the larger angle of
+  :func:`cone_plane_strain_friction_angle` (``N_gamma_upper_bound_cone``, smooth base only).
+
+:func:`compare_n_gamma` checks a measured value against both. The Davis estimate is not a proven bound.
 
 The numbers are data, like the material TOMLs; ``tests/unit/test_plasticity_references.py`` re-computes
 the ``computed`` and ``estimate`` entries and cross-checks the secondary one.
@@ -35,7 +42,13 @@ from typing import Any
 from ..errors import InputError
 from .bearing import davis1968_reduced_friction_angle, hansen1970_ngamma, prandtl1921_nc, reissner1924_nq
 
-__all__ = ["compare_n_gamma", "literature_search_record", "reference_entries", "strip_footing_reference"]
+__all__ = [
+    "compare_n_gamma",
+    "cone_plane_strain_friction_angle",
+    "literature_search_record",
+    "reference_entries",
+    "strip_footing_reference",
+]
 
 #: every ``kind`` a table row may have, best-sourced published kind first
 KINDS = (
@@ -77,6 +90,10 @@ _BOUND = (
     "upper bound: a non-associated material carries no more than the associated one with the same yield "
     "surface (Radenkovic's first theorem; Drescher & Detournay 1993, Geotechnique 43(3) 443-456)"
 )
+_BOUND_CONE = (
+    "upper bound for the MPM material itself: the associated Drucker-Prager cone sqrt(J2) = sin(phi) p, "
+    "Mohr-Coulomb cone_plane_strain_angle_deg in plane strain, N_gamma from " + _MOC + " (smooth only)"
+)
 _NR = "published, not retrieved"
 _FB_READ = (
     "only the abstract could be read: plane-strain finite elements and FLAC for smooth and rough bases, "
@@ -104,6 +121,17 @@ _TABLE: tuple[dict[str, Any], ...] = (
     {"phi_deg": 34.0, "base": "smooth", "flow": "associated", "value": 14.81, "kind": "computed",
      "source": _MOC, "table": "moc_n_gamma(radians(34)), fan_count=30, ray_count=160",
      "notes": "mesh-converged to about 1e-3; no published value for 34 deg was retrieved."},
+    {"phi_deg": 30.0, "base": "smooth", "flow": "associated cone", "value": 9.737, "kind": "computed",
+     "source": _MOC + " at the cone's plane-strain angle",
+     "table": "moc_n_gamma(cone_plane_strain_friction_angle(radians(30)) = 31.48 deg), fan_count=30, "
+              "ray_count=160",
+     "notes": "the associated Drucker-Prager cone sqrt(J2) = sin(phi) p in plane strain is Mohr-Coulomb "
+              "31.48 deg: the upper bound for the MPM material itself, not for the Mohr-Coulomb reference."},
+    {"phi_deg": 34.0, "base": "smooth", "flow": "associated cone", "value": 21.71, "kind": "computed",
+     "source": _MOC + " at the cone's plane-strain angle",
+     "table": "moc_n_gamma(cone_plane_strain_friction_angle(radians(34)) = 36.22 deg), fan_count=30, "
+              "ray_count=160",
+     "notes": "as for 30 deg."},
     {"phi_deg": 30.0, "base": "rough", "flow": "associated", "value": 14.8, "kind": "published, secondary",
      "source": _MARTIN + "; as tabulated by " + _HAN,
      "table": "Han et al. (2016) Table 2: Martin's exact rough-base N_gamma, 14.8 / 34.5 / 85.6 / 234 at "
@@ -197,6 +225,23 @@ def literature_search_record() -> list[dict[str, str]]:
     return [dict(row) for row in _SEARCHED]
 
 
+def cone_plane_strain_friction_angle(friction_angle: float) -> float:
+    """Plane-strain Mohr-Coulomb angle [rad] of the ASSOCIATED Drucker-Prager cone ``sqrt(J2) = mu p``
+    with ``mu = sin(friction_angle)``, the cone the MPM uses for a Mohr-Coulomb ``friction_angle`` [rad].
+
+    With isochoric flow that cone gives Mohr-Coulomb ``friction_angle`` in plane strain (``sigma_2`` the
+    mean of ``sigma_1`` and ``sigma_3``); with associated flow the plane-strain condition
+    ``d f / d sigma_2 = 0`` gives the classical match ``mu / 3 = tan(phi_a) / sqrt(9 + 12 tan^2 phi_a)``, i.e.
+    ``tan^2(phi_a) = 3 sin^2(phi) / (3 - 4 sin^2(phi))`` (31.48 deg at 30 deg, 36.22 deg at 34 deg).
+    Defined for ``sin^2(phi) < 3/4`` (``phi`` below 60 deg).
+    """
+    phi = float(friction_angle)
+    s2 = math.sin(phi) ** 2
+    if not (math.isfinite(phi) and 0.0 < phi and s2 < 0.75):
+        raise InputError("friction_angle", friction_angle, "an angle in (0, 60) deg, in radians")
+    return math.atan(math.sqrt(3.0 * s2 / (3.0 - 4.0 * s2)))
+
+
 def _rows(phi_deg: float, base: str, flow: str) -> list[dict[str, Any]]:
     return [
         dict(row)
@@ -241,7 +286,9 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
     * ``N_gamma_davis_estimate`` [-] with ``davis_estimate_kind`` and ``davis_estimate_reference``;
     * ``N_gamma_associated`` [-] (``None`` when not available) with ``associated_reference`` and
       ``associated_kind``; ``N_gamma_upper_bound`` [-] - the same number as a bound on the isochoric
-      value (``upper_bound_reference``), ``None`` when unknown;
+      value (``upper_bound_reference``), ``None`` when unknown; ``N_gamma_upper_bound_cone`` [-] - the
+      bound for the MPM's own Drucker-Prager cone (smooth base; ``None`` for rough and when the cone
+      angle exceeds the solver's 50 deg) at ``cone_plane_strain_angle_deg``;
     * ``reduced_friction_angle_deg`` - ``phi*``; ``N_q``, ``N_c`` at ``phi``;
     * ``approximations`` - Hansen, Vesic, Meyerhof, EC7 ``N_gamma`` at ``phi`` (context only);
     * ``published_non_associated`` - the literature entries for the case with their status.
@@ -257,10 +304,12 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
         raise InputError("base", base, "'smooth' or 'rough'")
     phi = math.radians(phi_d)
     phi_star = float(davis1968_reduced_friction_angle(phi, 0.0))
+    phi_cone = cone_plane_strain_friction_angle(phi)
     out: dict[str, Any] = {
         "phi_deg": phi_d,
         "base": base,
         "reduced_friction_angle_deg": math.degrees(phi_star),
+        "cone_plane_strain_angle_deg": math.degrees(phi_cone),
     }
     # the reduced-angle (Davis) estimate, and the associated value
     if base == "smooth":
@@ -270,7 +319,15 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
         assoc_row = _lookup(phi_d, base, "associated", "computed")
         assoc = assoc_row["value"] if assoc_row else moc_n_gamma(phi).n_gamma
         assoc_ref, assoc_kind = _MOC, "computed"
+        cone_row = _lookup(phi_d, base, "associated cone", "computed")
+        if cone_row:
+            cone = cone_row["value"]
+        elif phi_cone <= math.radians(50.0):  # the characteristics solver's range
+            cone = moc_n_gamma(phi_cone).n_gamma
+        else:
+            cone = None
     else:
+        cone = None
         davis = float(hansen1970_ngamma(phi_star))
         davis_kind, davis_ref = "approximation", _DAVIS_HANSEN
         assoc_row = _best_published(phi_d, base, "associated")
@@ -299,6 +356,8 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
         associated_kind=assoc_kind,
         N_gamma_upper_bound=assoc,
         upper_bound_reference=_BOUND,
+        N_gamma_upper_bound_cone=cone,
+        upper_bound_cone_reference=_BOUND_CONE,
     )
     out["N_q"] = float(reissner1924_nq(phi))
     out["N_c"] = float(prandtl1921_nc(phi))
@@ -320,7 +379,9 @@ def compare_n_gamma(n_gamma: float, reference: dict[str, Any]) -> dict[str, Any]
     """Ratios of a measured (MPM) ``n_gamma`` [-] to the numbers of a :func:`strip_footing_reference`
     result: ``ratio_to_reference``, ``ratio_to_published`` (``None`` without a published value),
     ``ratio_to_davis_estimate``, ``ratio_to_upper_bound`` and ``exceeds_upper_bound`` (``None`` when the
-    bound is unknown). A value above the upper bound cannot be a non-associated collapse load."""
+    bound is unknown), ``ratio_to_upper_bound_cone`` and ``exceeds_upper_bound_cone``. A value above
+    ``N_gamma_upper_bound`` cannot match any Mohr-Coulomb ``psi = 0`` reference; a value above the cone
+    bound cannot be a collapse load of the MPM material at all."""
     try:
         value = float(n_gamma)
     except (TypeError, ValueError):
@@ -333,6 +394,7 @@ def compare_n_gamma(n_gamma: float, reference: dict[str, Any]) -> dict[str, Any]
         return value / float(ref) if ref else None
 
     bound = reference.get("N_gamma_upper_bound")
+    cone = reference.get("N_gamma_upper_bound_cone")
     return {
         "N_gamma": value,
         "ratio_to_reference": ratio("N_gamma_reference"),
@@ -340,4 +402,6 @@ def compare_n_gamma(n_gamma: float, reference: dict[str, Any]) -> dict[str, Any]
         "ratio_to_davis_estimate": ratio("N_gamma_davis_estimate"),
         "ratio_to_upper_bound": ratio("N_gamma_upper_bound"),
         "exceeds_upper_bound": None if not bound else value > float(bound),
+        "ratio_to_upper_bound_cone": ratio("N_gamma_upper_bound_cone"),
+        "exceeds_upper_bound_cone": None if not cone else value > float(cone),
     }
