@@ -13,7 +13,7 @@ runner's own choice (:data:`terradyn.mpm.solver.PARALLEL_MIN_PARTICLES`). Bodies
 the contact geometry a large part of the step). The 1-minute load average is printed with each row:
 on a shared machine the figures measure the share of the cores this process got.
 
-Run: ``python benchmarks/bench_mpm.py [--quick] [--studies]``; ``--studies`` (or
+Run: ``python benchmarks/bench_mpm.py [--quick] [--wheel-only] [--studies]``; ``--studies`` (or
 ``TERRADYN_BENCH_STUDIES=1`` under ``make bench``) also times the mpm-wheel and mpm-alpha studies at
 their default resolution.
 """
@@ -124,6 +124,9 @@ def main() -> None:
     print(f"numba threading layer: {numba.threading_layer()}")
     if quick:
         return
+    if "--wheel-only" in sys.argv:
+        default_wheel()
+        return
     t0 = time.perf_counter()
     res = run_intrusion(Plate(0.05, 0.1), materials.get("MS"), depth=0.05)
     wall = time.perf_counter() - t0
@@ -134,6 +137,7 @@ def main() -> None:
         f"cell {md['cell_size_m'] * 1e3:.2f} mm, F_z = {res.summary['force_z_N']:.2f} N, "
         f"load {os.getloadavg()[0]:.1f}"
     )
+    default_wheel()
     if "--studies" not in sys.argv and os.environ.get("TERRADYN_BENCH_STUDIES") != "1":
         print("(study wall times: run with --studies or TERRADYN_BENCH_STUDIES=1; about 18 min)")
         return
@@ -146,6 +150,42 @@ def main() -> None:
         print(f"study {name} at its default resolution (2 worker processes): {wall:.0f} s wall")
         for rec in out.summary:
             print("   ", {k: round(v, 4) if isinstance(v, float) else v for k, v in rec.items()})
+
+
+def default_wheel(drive_seconds: float = 0.2) -> None:
+    """The default wheel case (0.13 m x 0.16 m wheel, MS, 130 N, omega 1 rad/s, slip 0.3, default cell
+    size and moving window): particle-steps/s of a short run with the default grid and window (its
+    settling and sinking cut short, compiled code warm), and the wall time the full default run would
+    take at that rate. The projection is labelled as such: the full run (about 3e5 steps) is not made
+    here."""
+    from terradyn.geometry import WheelCircular
+    from terradyn.mpm import Bed, Drive, run_wheel
+    from terradyn.mpm.runs import DRIVE_RADIANS, settle_time
+
+    wheel, ms = WheelCircular(0.065, 0.16), materials.get("MS")
+    short = dict(load=130.0, omega=1.0, slip=0.3, bed=Bed(settle_time=0.01), drive=Drive(sink_time=0.01))
+    run_wheel(wheel, ms, **{**short, "drive": Drive(sink_time=0.01, duration=0.01)})  # warm-up
+    t0 = time.perf_counter()
+    res = run_wheel(wheel, ms, **{**short, "drive": Drive(sink_time=0.01, duration=drive_seconds)})
+    wall = time.perf_counter() - t0
+    md = res.metadata
+    rate = md["stepped_particles"] * md["steps"] / wall
+    dt = md["dt_s"]
+    model = GranularModel.from_material(ms)
+    full_steps = (
+        round(settle_time(model, Bed(), md["bed_depth_m"]) / dt)
+        + round(3.0 * np.sqrt(0.065 / 9.81) / dt)
+        + round(DRIVE_RADIANS / 1.0 / dt)
+    )
+    print(
+        f"default wheel (MS, 0.13 m x 0.16 m, 130 N, slip 0.3, cell {md['cell_size_m'] * 1e3:.2f} mm, "
+        f"window {md['window_m']:.3f} m of a {md['bed_width_m']:.3f} m bed): {md['stepped_particles']} of "
+        f"{md['particles']} particles stepped, {rate:.3e} particle-steps/s over {md['steps']} steps, "
+        f"{numba.get_num_threads()} threads allowed; the full default run ({full_steps} steps) would take "
+        f"about {full_steps * md['stepped_particles'] / rate / 60:.0f} min at this rate "
+        "(projected, not run); "
+        f"load {os.getloadavg()[0]:.1f}"
+    )
 
 
 if __name__ == "__main__":

@@ -320,6 +320,12 @@ def wheel(
         0.0, "--drawbar-load", help="Horizontal load on the axle [N] (+ backwards) when x is free."
     ),
     duration: float | None = typer.Option(None, "--duration", help="Driving time [s]."),
+    window: float | None = typer.Option(
+        None,
+        "--window",
+        help="Length [m] of the moving window of grains stepped around the wheel; 0 = the whole bed "
+        "(default: the wheel and its bed margin on either side).",
+    ),
     width: float = WHEEL_WIDTH,
     shape: str = typer.Option("circular", "--shape", help="Wheel shape: circular, grousered or flapped."),
     sizes: dict[str, Any] = {},  # the wheel size flags (MPM_WHEEL_SIZE_FLAGS)  # noqa: B006
@@ -369,7 +375,7 @@ def wheel(
             drive_torque=drive_torque,
             max_omega=max_omega,
             drawbar_load=drawbar_load,
-            bed=Bed(packing=packing, walls=walls),
+            bed=Bed(packing=packing, walls=walls, window=window),
             resolution=Resolution(
                 cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact
             ),

@@ -202,6 +202,7 @@ def _derived_inputs(runner: Runner, eff: Body) -> dict[str, Any]:
         "load": runner.body.load,
         "mass": runner.body.mass,
         "inertia": runner.body.inertia,
+        **({"window": runner.window} if runner.window > 0 else {}),
     }
 
 
@@ -472,6 +473,7 @@ def run_intrusion(
         frame_count=outputs.frame_count,
     )
     runner = _runner(c, grid, state, dt, phases, every, speed, outputs, _run_inputs(c, body, named))
+    runner.window = c.bed.window or 0.0
     wall = _execute(runner, outputs.resume, eff)
     series = _series(runner, body.width, skip_phases=1)
     series = {"depth_m": -series["z_m"], **series}
@@ -508,7 +510,7 @@ def _body_state(c: _Common, seg, pose, free, mass, load, width, inertia=None) ->
 
 
 def _metadata(runner: Runner, model: GranularModel, body: Body, eff: Body, wall: float) -> dict[str, Any]:
-    g = runner.grid
+    g = runner.bed_grid
     return {
         "model": "terradyn MPM (plane strain, Dunatunga-Kamrin granular model, APIC, quadratic B-splines)",
         "citation": "S. Dunatunga, K. Kamrin, J. Fluid Mech. 779 (2015), doi:10.1017/jfm.2015.383",
@@ -522,6 +524,8 @@ def _metadata(runner: Runner, model: GranularModel, body: Body, eff: Body, wall:
         "bed_depth_m": g.depth,
         "walls": repr(g.walls),
         "particles": len(runner.particles),
+        "window_m": runner.window,  # 0: the whole bed was stepped
+        "stepped_particles": runner.stepped_particles,  # in the window at the end of the run
         "dt_s": runner.dt,
         "steps": runner.step,
         "wall_time_s": wall,
@@ -552,6 +556,27 @@ def _wheel_bed(seg, c: _Common, travel, v_forward):
     pose0 = np.array([x_start, 0.0, 0.0])
     pose0[1] = -lowest_point(seg, pose0) + 0.5 * h
     return grid, pose0
+
+
+def _wheel_window(c: _Common, reach: float) -> float:
+    """Length [m] of the moving window of a wheel run: ``bed.window``, or by default the wheel and the
+    bed margin of :func:`_wheel_bed` on either side (the bed a wheel that does not travel gets).
+
+    Measured in docs/mpm.md ("Moving window"): the window changes the forces of the forced-slip wheel
+    study by as much as moving the walls does, and saves the grains beyond it.
+    """
+    h = c.cell_size
+    smallest = 2.0 * reach + 8.0 * h
+    if c.bed.window is None:
+        return 2.0 * (reach + max(2.0 * reach, 4.0 * h))
+    if 0.0 < c.bed.window < smallest:
+        raise InputError(
+            "window",
+            c.bed.window,
+            f"0 (the whole bed) or at least {smallest:.4g} m",
+            "the wheel and 4 cells each side",
+        )
+    return c.bed.window
 
 
 def _wheel_summary(runner, width, seg, average_fraction, radius, load):
@@ -739,6 +764,7 @@ def run_wheel(
         frame_count=outputs.frame_count,
     )
     runner = _runner(c, grid, state, dt, phases, every, v_max, outputs, _run_inputs(c, wheel, named))
+    runner.window = _wheel_window(c, reach)
     wall = _execute(runner, outputs.resume, eff)
     avg = specs["drive"].average_fraction
     series, summary = _wheel_summary(runner, w, seg, avg, radius, load)

@@ -374,6 +374,14 @@ class Runner:
     inside a chunk are held until it ends (:class:`_HeldInterrupts`); :meth:`run` then writes a
     checkpoint of that state and raises :class:`RunInterrupted`. Resuming it is bit-identical to an
     uninterrupted run.
+
+    ``window`` [m] > 0 makes a moving window: only the grains within ``window`` of bed length centred
+    on the body (snapped to whole cells, kept inside the bed) are stepped, on a grid over the window
+    alone whose edges act as the bed's side walls; the rest of the bed is held as it is (the undisturbed
+    bed ahead of a wheel, its rut behind). At the end of each chunk the window is re-centred on the
+    body, so a body that travels far pays for the window, not for the bed. ``particles`` always holds
+    the whole bed. The window is a function of the body's position at the end of a chunk, so a
+    resumed run rebuilds the same one.
     """
 
     model: GranularModel
@@ -393,6 +401,7 @@ class Runner:
     snapshot_every: int = 0
     progress: ProgressCallback | None = None
     frame_every: int = 0
+    window: float = 0.0
     step: int = 0
     rows: list[list[float]] = field(default_factory=list)
     frames: list[dict[str, np.ndarray]] = field(default_factory=list)
@@ -400,6 +409,9 @@ class Runner:
     _saved_step: int = field(default=-1, repr=False)  # step of the checkpoint on disk (-1: none)
     _step_seconds: dict[int, float] = field(default_factory=dict, repr=False)  # by thread count
     _chunks_timed: int = field(default=-1, repr=False)  # -1: the first (warm-up) chunk is not timed
+    _bed: BedGrid | None = field(default=None, repr=False)  # the whole bed when a window is in use
+    _index: np.ndarray | None = field(default=None, repr=False)  # bed particles in the window
+    _active: ParticleState | None = field(default=None, repr=False)  # their stepped copy
 
     ROW = (
         "phase",
@@ -453,6 +465,9 @@ class Runner:
                 f"({type(exc).__name__}); remove it or give another path",
             ) from None
         self.particles = particles
+        self._index = self._active = None  # rebuilt from the restored pose by prepare()
+        if self._bed is not None:
+            self.grid = self._window_grid(self.body.pose[0])
         self.step = step
         self.rows = [list(r) for r in rows]
         self.frames = frames
@@ -476,12 +491,69 @@ class Runner:
         self._saved_step = self.step
 
     def prepare(self) -> None:
-        """Allocate the grid and scratch buffers (idempotent)."""
+        """Allocate the grid and scratch buffers, and place the window (idempotent)."""
+        if self.window > 0.0 and self._bed is None:
+            check_positive("window", self.window)
+            self._bed = self.grid
+            h = self._bed.cell_size
+            cells = math.ceil(self.window / h - 1e-9)
+            if cells < round(self._bed.width / h):
+                if cells < 8:
+                    raise InputError("window", self.window, f"at least 8 cells ({8 * h:g} m)")
+                self.grid = self._window_grid(self.body.pose[0])
+            else:  # a window as long as the bed is the bed
+                self._bed = None
+                self.window = 0.0
+        if self._bed is not None and self._active is None:
+            self._gather()
         if getattr(self, "_buf", None) is None:
             nx, nz = self.grid.shape
             self._grid = (np.zeros((nx, nz)), np.zeros((nx, nz, 2)))
             self._buf = K.make_buffer(nx, nz, len(self.particles))
-            self._scratch = K.make_scratch(nx, nz, len(self.particles))
+            self._scratch = K.make_scratch(nx, nz, len(self.particles))  # sized for the whole bed
+
+    @property
+    def bed_grid(self) -> BedGrid:
+        """The whole bed (``grid`` is the window's grid when a window is in use)."""
+        return self.grid if self._bed is None else self._bed
+
+    @property
+    def stepped_particles(self) -> int:
+        """Particles stepped per step: the window's (after :meth:`prepare`) or the whole bed's."""
+        return len(self.particles) if self._active is None else len(self._active)
+
+    def _window_grid(self, x_body: float) -> BedGrid:
+        """The window's grid centred on ``x_body`` [m] to the nearest cell, inside the bed."""
+        bed = self._bed
+        assert bed is not None
+        h = bed.cell_size
+        cells = math.ceil(self.window / h - 1e-9)
+        first, last = round(bed.x_left / h), round(bed.x_left / h) + round(bed.width / h) - cells
+        left = min(max(round(x_body / h - 0.5 * cells), first), last)
+        return BedGrid(cells * h, bed.depth, bed.air, h, left * h, bed.walls)
+
+    def _gather(self) -> None:
+        """Take the bed particles within the window as the stepped set. Stepped particles stay inside
+        the window (the grid clamps them to its walls) and held ones never move, so this set is the
+        one the window held before it moved, plus the grains it now covers, minus those it left."""
+        lo_x, hi_x = self.grid.bounds[:2]
+        x = self.particles.pos[:, 0]
+        self._index = np.flatnonzero((x >= lo_x) & (x <= hi_x))
+        p = self.particles
+        self._active = ParticleState(
+            **{k: np.ascontiguousarray(getattr(p, k)[self._index]) for k in ParticleState.NAMES}
+        )
+
+    def _scatter_and_move(self) -> None:
+        """Copy the stepped particles back into the bed, and re-centre the window on the body."""
+        if self._active is None or self._index is None:
+            return
+        for k in ParticleState.NAMES:
+            getattr(self.particles, k)[self._index] = getattr(self._active, k)
+        grid = self._window_grid(self.body.pose[0])
+        if grid.x_left != self.grid.x_left:
+            self.grid = grid
+            self._gather()
 
     def advance_steps(self, n: int, damping: float = 0.0) -> np.ndarray:
         """Advance ``n`` steps (no recording) and check stability; returns the per-step body forces
@@ -498,13 +570,14 @@ class Runner:
             numba.set_num_threads(threads)
         self._time_chunk(use, (time.perf_counter() - start) / max(1, n))
         self.step += n
+        self._scatter_and_move()
         self._check(n)
         return forces
 
     def _thread_count(self, threads: int) -> int:
         """Threads for the next chunk: 1 below :data:`PARALLEL_MIN_PARTICLES`, else the faster so far
         of 1 and ``threads`` (each is tried first; the slower one again every THREAD_PROBE_EVERY)."""
-        if threads <= 1 or len(self.particles) < PARALLEL_MIN_PARTICLES:
+        if threads <= 1 or self.stepped_particles < PARALLEL_MIN_PARTICLES:
             return 1
         seen = self._step_seconds
         for count in (threads, 1):
@@ -589,7 +662,8 @@ class Runner:
             self.progress(t, self.step / max(1, self.total_steps))
 
     def _advance(self, n: int, damping: float, forces: np.ndarray) -> None:
-        p, b, (gm, gv) = self.particles, self.body, self._grid
+        p = self.particles if self._active is None else self._active
+        b, (gm, gv) = self.body, self._grid
         x0, z0 = self.grid.origin
         walls = self.grid.walls
         kinds = np.array([walls.left.code, walls.right.code, walls.bottom.code], dtype=np.int64)

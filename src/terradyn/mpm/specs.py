@@ -121,6 +121,10 @@ class Bed(_Spec):
         :func:`~terradyn.mpm.run_wheel`); :class:`~terradyn.mpm.MPMTerrain` needs both.
     settle_time : damped settling under gravity before the body moves [s] (None: 40 P-wave transits
         of the bed, plus a compaction time for an unconsolidated bed; 0 skips settling).
+    window : length [m] of the moving window of grains that is stepped around the body (see
+        :class:`~terradyn.mpm.solver.Runner`); 0 = the whole bed. None = the case's rule: a wheel
+        run keeps the wheel and its bed margin on either side (the bed around its start), an
+        intrusion steps the whole bed. :class:`~terradyn.mpm.MPMTerrain` steps the whole bed.
     """
 
     packing: BedPacking | str = BedPacking.CONSOLIDATED
@@ -130,6 +134,7 @@ class Bed(_Spec):
     depth: float | None = None
     width: float | None = None
     settle_time: float | None = None
+    window: float | None = None
 
     _NAMES: ClassVar[dict[str, str]] = {"density": "bed_density", "depth": "bed_depth", "width": "bed_width"}
 
@@ -148,6 +153,7 @@ class Bed(_Spec):
         _optional_positive("bed_depth", self.depth)
         _optional_positive("bed_width", self.width)
         _optional_positive("settle_time", self.settle_time, allow_zero=True)
+        _optional_positive("window", self.window, allow_zero=True)
 
 
 @dataclass(frozen=True, repr=False)

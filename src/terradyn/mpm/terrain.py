@@ -87,6 +87,8 @@ class MPMTerrain:
                 hint = "MPMTerrain has no sizing rule: give the bed and the cell size"
                 raise InputError(name, None, "a size [m]", hint)
         assert width is not None and depth is not None and cell is not None
+        if bed.window:
+            raise InputError("window", bed.window, "None or 0 for MPMTerrain", "it steps the whole bed")
         self.bed, self.resolution = bed, resolution
         self.contact = ContactScheme.coerce(resolution.contact)
         self.model = model = resolve_model(material, **overrides)

@@ -3,10 +3,11 @@
 A rigid strip footing of width B is pushed into a cohesionless bed of unit weight gamma = rho g. Rigid-
 plastic theory gives the collapse pressure of a surface footing as q_u = 0.5 gamma B N_gamma(phi) with a
 bearing factor from the method of characteristics (exact values for associated flow: Martin 2005; for
-isochoric, non-associated flow the published finite-element values of Frydman & Burd 1997 and Loukidis
-& Salgado 2009 are lower). The MPM continuum (Dunatunga-Kamrin, isochoric, mu_s = sin phi in plane
-strain) is a non-associated Mohr-Coulomb material of friction angle phi and dilatancy 0, so its N_gamma
-is compared with the non-associated value.
+isochoric, non-associated flow there is no exact solution; the associated value is an upper bound on
+it, and finite-element values exist in Frydman & Burd 1997 and Loukidis & Salgado 2009, not retrieved
+here, see :mod:`terradyn.plasticity.references`). The MPM continuum (Dunatunga-Kamrin, isochoric,
+mu_s = sin phi in plane strain) is a non-associated Mohr-Coulomb material of friction angle phi and
+dilatancy 0, so its N_gamma is compared with the non-associated value.
 
 How N_gamma is read from an MPM run: the footing moves down at constant speed; the bearing pressure
 q(s) = F_z / (B w) is recorded against settlement s. An elastic-plastic bed has no sharp collapse, and
