@@ -74,6 +74,22 @@ class MPMOptions:
         help="Simulated time [s] between --snapshots files (default: 4 cells of travel).",
     )
     plot = typer.Option(None, "--plot", help="Force history plot (.png/.pdf/.svg/.jpg).")
+    dilatancy = typer.Option(
+        0.0,
+        "--dilatancy",
+        help="Dilatancy coefficient K [-] of tan(psi) = K (phi - phi_c): dense beds dilate, loose ones "
+        "compact and stay as loose as prepared; 0 = off (isochoric flow).",
+    )
+
+
+def _dilatancy(value: float) -> float | None:
+    """The model override of --dilatancy: K in [0, MAX_DILATANCY], None when off."""
+    from ..mpm.model import MAX_DILATANCY
+
+    value = check_finite("--dilatancy", value)
+    if not 0.0 <= value <= MAX_DILATANCY:
+        raise InputError("--dilatancy", value, f"a number in [0, {MAX_DILATANCY:g}] [-] (0 = off)")
+    return value or None
 
 
 def _write_series(result: Any, path: Path | None) -> None:
@@ -225,6 +241,7 @@ def intrude(
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
+    dilatancy: float = MPMOptions.dilatancy,
     checkpoint: str | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
@@ -265,6 +282,7 @@ def intrude(
             bed=bed,
             resolution=resolution,
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
+            dilatancy=_dilatancy(dilatancy),
         )
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)
@@ -334,6 +352,7 @@ def wheel(
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
+    dilatancy: float = MPMOptions.dilatancy,
     checkpoint: str | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
@@ -381,6 +400,7 @@ def wheel(
             ),
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             drive=Drive(duration=duration),
+            dilatancy=_dilatancy(dilatancy),
         )
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)

@@ -38,7 +38,7 @@ from ._contact_kernels import (
     p2g_sides,
     polygon_sdf,
 )
-from .constitutive import dk_stress_update
+from .constitutive import dk_dilatant_stress_update, dk_stress_update
 
 __all__ = [
     "BAND_CELLS",
@@ -174,6 +174,8 @@ def g2p(
     grain_diameter,
     grain_density,
     critical_density,
+    dilatancy=0.0,
+    loose_density=0.0,
 ):
     """Grid -> particle: velocities, affine matrices, positions, volumes and stresses (in place).
 
@@ -181,7 +183,9 @@ def g2p(
     node whose normal ``node[i, j, :2]`` points against its own (the far side of a thin body), the
     far-side field ``grid_vel_m``; every other particle-node pair reads ``grid_vel``. ``bounds`` (4,) =
     (x_min, x_max, z_min, z_max) [m] clamps positions inside the walls; ``gdot`` (N,) receives the
-    plastic shear rate [1/s]. Material parameters as in :func:`~terradyn.mpm.constitutive.dk_stress_update`.
+    plastic shear rate [1/s]. Material parameters as in :func:`~terradyn.mpm.constitutive.dk_stress_update`;
+    ``dilatancy`` K [-] > 0 selects :func:`~terradyn.mpm.constitutive.dk_dilatant_stress_update` with
+    ``loose_density`` [kg/m^3] (the density of a point is its mass over its volume).
     """
     n = pos.shape[0]
     inv_h = 1.0 / h
@@ -241,26 +245,33 @@ def g2p(
         pos[p, 1] = min(bounds[3], max(bounds[2], pos[p, 1] + dt * vz))
         v = vol[p] * math.exp(dt * (lxx + lzz))
         vol[p] = v
-        out = dk_stress_update(
-            stress[p, 0],
-            stress[p, 1],
-            stress[p, 2],
-            stress[p, 3],
-            lxx,
-            lxz,
-            lzx,
-            lzz,
-            dt,
-            mass[p] / v,
-            shear_modulus,
-            lame_lambda,
-            mu_s,
-            mu_2,
-            inertial_number_0,
-            grain_diameter,
-            grain_density,
-            critical_density,
-        )
+        if dilatancy > 0.0:
+            out = dk_dilatant_stress_update(
+                stress[p, 0], stress[p, 1], stress[p, 2], stress[p, 3], lxx, lxz, lzx, lzz, dt,
+                mass[p] / v, shear_modulus, lame_lambda, mu_s, mu_2, inertial_number_0,
+                grain_diameter, grain_density, critical_density, dilatancy, loose_density,
+            )  # fmt: skip
+        else:
+            out = dk_stress_update(
+                stress[p, 0],
+                stress[p, 1],
+                stress[p, 2],
+                stress[p, 3],
+                lxx,
+                lxz,
+                lzx,
+                lzz,
+                dt,
+                mass[p] / v,
+                shear_modulus,
+                lame_lambda,
+                mu_s,
+                mu_2,
+                inertial_number_0,
+                grain_diameter,
+                grain_density,
+                critical_density,
+            )
         stress[p, 0] = out[0]
         stress[p, 1] = out[1]
         stress[p, 2] = out[2]
@@ -316,7 +327,9 @@ def advance(
 ):
     """Run ``n_steps`` MPM steps of ``dt`` [s] with one rigid body, all compiled.
 
-    ``material`` (8,) = (G, lambda, mu_s, mu_2, I_0, d, rho_s, rho_c) in SI. Body: ``seg`` outline
+    ``material`` (8,) = (G, lambda, mu_s, mu_2, I_0, d, rho_s, rho_c) in SI, or (10,) with the
+    dilatancy K and the loose density appended (:meth:`GranularModel.as_kernel_array`).
+    Body: ``seg`` outline
     segments in its frame, ``pose`` (3,) = (x, z, theta) and ``twist`` (3,) = (vx, vz, omega) updated
     in place; ``free`` (3,) flags x/z translation and the spin as free (else prescribed by ``twist``),
     with mass ``body_mass`` [kg/m], moment of inertia ``body_inertia`` [kg m^2/m] and external load
@@ -329,6 +342,8 @@ def advance(
     """
     g_mod = material[0]
     lam = material[1]
+    dilatancy = material[8] if material.shape[0] > 8 else 0.0
+    loose_density = material[9] if material.shape[0] > 9 else material[7]
     sides = has_body and contact == CONTACT_SIDES
     grid_vel_m = scratch_grid[:, :, 0:2]
     node = scratch_grid[:, :, 2:5]
@@ -401,6 +416,8 @@ def advance(
             material[5],
             material[6],
             material[7],
+            dilatancy,
+            loose_density,
         )
         if has_body:
             if sides:

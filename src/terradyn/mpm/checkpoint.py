@@ -62,11 +62,16 @@ def atomic_write(path: str | Path, write: Any, *, suffix: str = ".tmp") -> Path:
 
 def plain(value: Any) -> Any:
     """``value`` as JSON-able data: dataclasses become dicts (with their ``type``), enums their value,
-    NumPy scalars and arrays Python numbers and lists, paths strings, tuples lists."""
+    NumPy scalars and arrays Python numbers and lists, paths strings, tuples lists. A dataclass field
+    with ``metadata={"omit_default": True}`` is left out while it holds its default (an option added
+    later then leaves the fingerprints of earlier runs unchanged)."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         out: dict[str, Any] = {"type": type(value).__name__}
         for f in dataclasses.fields(value):
-            out[f.name] = plain(getattr(value, f.name))
+            item = getattr(value, f.name)
+            if f.metadata.get("omit_default") and item == f.default:
+                continue
+            out[f.name] = plain(item)
         return out
     if isinstance(value, enum.Enum):
         return plain(value.value)

@@ -27,6 +27,7 @@ from ..errors import InputError, check_positive, check_range
 from ..materials import Material
 
 __all__ = [
+    "LOOSE_DENSITY_RATIO",
     "BedPacking",
     "GranularModel",
     "Wall",
@@ -37,6 +38,16 @@ __all__ = [
     "friction_coefficient_from_angle",
     "resolve_model",
 ]
+
+
+#: With dilatancy on and no ``loose_density``, a point is disconnected below this fraction of the
+#: critical density. A choice: random loose packings of frictional spheres are near phi = 0.55-0.57
+#: and their critical states near 0.58-0.60, a ratio of about 0.95 (continuum.md section 7.4 quotes
+#: an onset of dilatancy at phi_c = 0.605 for glass beads prepared from 0.585).
+LOOSE_DENSITY_RATIO = 0.95
+
+#: Largest accepted dilatancy coefficient K [-].
+MAX_DILATANCY = 50.0
 
 
 def friction_coefficient_from_angle(friction_angle: float) -> float:
@@ -105,6 +116,9 @@ class BedPacking(str, Enum):
 
     CONSOLIDATED: density above critical with a geostatic stress (immediate frictional resistance).
     UNCONSOLIDATED: density just below critical and stress-free; it compacts under gravity while settling.
+    With dilatancy on (:attr:`GranularModel.dilatancy`) a bed at or above the model's
+    :attr:`~GranularModel.disconnection_density` is connected: it gets the geostatic stress of a
+    consolidated bed, stays loose while it settles and compacts only where it is sheared.
     """
 
     CONSOLIDATED = "consolidated"
@@ -127,6 +141,14 @@ class GranularModel:
     critical_density : float  rho_c [kg/m^3]
     bulk_density : float  nominal bed density [kg/m^3]
     surface_friction : float  body-grain Coulomb friction [-]
+    dilatancy : float  K [-] of ``tan(psi) = K (phi - phi_c)`` (0: off, the isochoric model; see
+        :mod:`terradyn.mpm.constitutive`)
+    loose_density : float or None  with dilatancy on, the density [kg/m^3] below which a point is
+        disconnected (stress-free); None: :data:`LOOSE_DENSITY_RATIO` x critical. Off, the critical
+        density is the threshold.
+
+    ``dilatancy`` and ``loose_density`` are left out of a run's fingerprint at their defaults, so the
+    checkpoints of runs without dilatancy are the same as before they existed.
     """
 
     youngs_modulus: float
@@ -139,6 +161,8 @@ class GranularModel:
     critical_density: float
     bulk_density: float
     surface_friction: float
+    dilatancy: float = field(default=0.0, metadata={"omit_default": True})
+    loose_density: float | None = field(default=None, metadata={"omit_default": True})
 
     def __post_init__(self) -> None:
         check_positive("youngs_modulus", self.youngs_modulus)
@@ -151,6 +175,24 @@ class GranularModel:
         check_range("critical_density", self.critical_density, 1.0, self.grain_density, unit="kg/m^3")
         check_range("bulk_density", self.bulk_density, 1.0, self.grain_density, unit="kg/m^3")
         check_range("surface_friction", self.surface_friction, 0.0, 2.0)
+        check_range("dilatancy", self.dilatancy, 0.0, MAX_DILATANCY)
+        if self.loose_density is not None:
+            if self.dilatancy == 0.0:
+                raise InputError(
+                    "loose_density", self.loose_density, "None when dilatancy is 0", "set dilatancy > 0"
+                )
+            check_range("loose_density", self.loose_density, 0.5 * self.critical_density,
+                        self.critical_density, unit="kg/m^3")  # fmt: skip
+
+    def __repr__(self) -> str:
+        """The dataclass repr without the dilatancy fields at their defaults (results' metadata of
+        runs without dilatancy read as before)."""
+        shown = [
+            f"{f.name}={getattr(self, f.name)!r}"
+            for f in fields(self)
+            if not (f.metadata.get("omit_default") and getattr(self, f.name) == f.default)
+        ]
+        return f"{type(self).__name__}({', '.join(shown)})"
 
     @classmethod
     def from_material(
@@ -162,12 +204,15 @@ class GranularModel:
         friction_coefficient: float | None = None,
         surface_friction: float | None = None,
         rate_dependent: bool = False,
+        dilatancy: float | None = None,
+        loose_density: float | None = None,
     ) -> GranularModel:
         """Model of a medium; keyword overrides replace single parameters.
 
         With ``rate_dependent=False`` (default) mu_2 is set to mu_s (constant friction, the RFT-comparison
         model); ``True`` keeps the material's mu(I) parameters. Missing densities fall back as follows:
-        critical = bulk, grain = bulk / 0.6.
+        critical = bulk, grain = bulk / 0.6. ``dilatancy`` (K [-]) and ``loose_density`` [kg/m^3] are off
+        unless given (the shipped media carry no dilatancy).
         """
         if not isinstance(material, Material):
             raise InputError("material", material, "a terradyn Material (materials.get(name))")
@@ -192,15 +237,27 @@ class GranularModel:
             critical_density=crit,
             bulk_density=bulk,
             surface_friction=c.surface_friction if surface_friction is None else surface_friction,
+            dilatancy=0.0 if dilatancy is None else dilatancy,
+            loose_density=loose_density,
         )
 
-    def with_changes(self, **changes: float) -> GranularModel:
+    def with_changes(self, **changes: Any) -> GranularModel:
         """A validated copy with some parameters replaced."""
         known = {f.name for f in fields(self)}
         for key in changes:
             if key not in known:
                 raise InputError("granular model field", key, f"one of {sorted(known)}")
         return replace(self, **changes)
+
+    @property
+    def disconnection_density(self) -> float:
+        """Density [kg/m^3] below which a point is stress-free: critical, or with dilatancy on the
+        loose density."""
+        if self.dilatancy == 0.0:
+            return self.critical_density
+        if self.loose_density is None:
+            return LOOSE_DENSITY_RATIO * self.critical_density
+        return self.loose_density
 
     @property
     def shear_modulus(self) -> float:
@@ -244,21 +301,23 @@ class GranularModel:
             )
 
     def as_kernel_array(self):  # -> NDArray
-        """(G, lambda, mu_s, mu_2, I_0, d, rho_s, rho_c) for :func:`terradyn.mpm._kernels.advance`."""
+        """(G, lambda, mu_s, mu_2, I_0, d, rho_s, rho_c) for :func:`terradyn.mpm._kernels.advance`,
+        followed with dilatancy on by (K, loose density)."""
         import numpy as np
 
-        return np.array(
-            [
-                self.shear_modulus,
-                self.lame_lambda,
-                self.friction_coefficient,
-                self.friction_coefficient_2,
-                self.inertial_number_0,
-                self.grain_diameter,
-                self.grain_density,
-                self.critical_density,
-            ]
-        )
+        values = [
+            self.shear_modulus,
+            self.lame_lambda,
+            self.friction_coefficient,
+            self.friction_coefficient_2,
+            self.inertial_number_0,
+            self.grain_diameter,
+            self.grain_density,
+            self.critical_density,
+        ]
+        if self.dilatancy > 0.0:
+            values += [self.dilatancy, self.disconnection_density]
+        return np.array(values)
 
 
 def resolve_model(material: Any, *, rate_dependent: bool = False, **overrides: float | None) -> GranularModel:

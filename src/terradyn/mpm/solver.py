@@ -283,7 +283,9 @@ def make_bed(
     Consolidated: density ``density`` (default ``max(bulk, 1.02 critical)``) and a geostatic stress
     ``sigma_zz = -rho g (0 - z)``, ``sigma_xx = sigma_yy = K_0 sigma_zz`` with ``K_0 = nu/(1 - nu)`` (the
     elastic equilibrium of a laterally confined layer). Unconsolidated: density (default
-    ``0.98 critical``) at or below critical and no stress.
+    ``0.98 critical``) at or below critical and no stress, so that it compacts to critical while it
+    settles; with dilatancy on, a bed at or above ``model.disconnection_density`` is connected and
+    gets the geostatic stress too, so it stays as loose as prepared (it compacts where it is sheared).
     """
     packing = BedPacking(packing)
     ppc = int(particles_per_cell)
@@ -321,7 +323,8 @@ def make_bed(
     n = len(pos)
     vol = np.full(n, (h / ppc) ** 2)
     stress = np.zeros((n, 4))
-    if packing is BedPacking.CONSOLIDATED:
+    connected = model.dilatancy > 0.0 and rho >= model.disconnection_density
+    if packing is BedPacking.CONSOLIDATED or connected:
         szz = rho * gravity * pos[:, 1]
         k0 = model.earth_pressure_at_rest
         stress[:, 0] = k0 * szz

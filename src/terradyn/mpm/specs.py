@@ -304,6 +304,7 @@ MODEL_OVERRIDES = (
     "friction_coefficient",
     "surface_friction",
     "rate_dependent",
+    "dilatancy",
 )
 
 
