@@ -46,6 +46,14 @@ def test_intercept_of_the_embedment_line_gives_n_gamma(base):
     assert calls["outputs"].record_spacing == pytest.approx(min(0.25 * 0.04 / 20, 0.02 * 0.1 * 0.04))
     rec = res.record()
     assert {"N_gamma_mpm", "N_gamma_reference", "reference"} <= set(rec)
+    # 11 lies inside Radenkovic's bracket at 30 deg: smooth [4.42, 7.65] no, rough (upper 14.8) yes
+    if base == "smooth":
+        assert rec["N_gamma_lower_bound"] == pytest.approx(4.424, abs=1e-3)
+        assert rec["N_gamma_upper_bound"] == pytest.approx(7.650, abs=1e-3)
+        assert rec["within_bounds"] is False
+    else:
+        assert rec["N_gamma_lower_bound"] is None and rec["N_gamma_upper_bound"] == pytest.approx(14.8)
+        assert rec["within_bounds"] is True
 
 
 def test_settlement_must_span_cells_and_inputs_are_checked():

@@ -224,3 +224,17 @@ def test_cone_bound_is_left_out_beyond_the_solver_range():
 def test_bad_arguments_are_refused(phi, base, field):
     with pytest.raises(InputError, match=field):
         ref(phi, base)
+
+
+def test_the_lower_bound_is_the_smooth_characteristics_value_at_the_reduced_angle():
+    smooth, rough = ref(34, "smooth"), ref(30, "rough")
+    # Radenkovic: the associated material of strength tan(phi*) = sin(phi) bounds psi = 0 from below
+    assert smooth["N_gamma_lower_bound"] == smooth["N_gamma_davis_estimate"] == pytest.approx(6.726)
+    assert smooth["N_gamma_lower_bound"] < smooth["N_gamma_upper_bound"]
+    assert "Radenkovic" in smooth["lower_bound_reference"]
+    assert rough["N_gamma_lower_bound"] is None  # Hansen's formula bounds nothing
+    assert compare_n_gamma(6.0, smooth)["below_lower_bound"] is True
+    inside = compare_n_gamma(14.0, smooth)
+    assert inside["below_lower_bound"] is False
+    assert inside["ratio_to_lower_bound"] == pytest.approx(14.0 / 6.726)
+    assert compare_n_gamma(14.0, rough)["below_lower_bound"] is None

@@ -288,7 +288,9 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
       ``associated_kind``; ``N_gamma_upper_bound`` [-] - the same number as a bound on the isochoric
       value (``upper_bound_reference``), ``None`` when unknown; ``N_gamma_upper_bound_cone`` [-] - the
       bound for the MPM's own Drucker-Prager cone (smooth base; ``None`` for rough and when the cone
-      angle exceeds the solver's 50 deg) at ``cone_plane_strain_angle_deg``;
+      angle exceeds the solver's 50 deg) at ``cone_plane_strain_angle_deg``; ``N_gamma_lower_bound`` [-]
+      - Radenkovic's lower bound, the associated value at ``phi*`` (smooth base; ``None`` for rough,
+      where only Hansen's formula is available) with ``lower_bound_reference``;
     * ``reduced_friction_angle_deg`` - ``phi*``; ``N_q``, ``N_c`` at ``phi``;
     * ``approximations`` - Hansen, Vesic, Meyerhof, EC7 ``N_gamma`` at ``phi`` (context only);
     * ``published_non_associated`` - the literature entries for the case with their status.
@@ -358,6 +360,12 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
         upper_bound_reference=_BOUND,
         N_gamma_upper_bound_cone=cone,
         upper_bound_cone_reference=_BOUND_CONE,
+        # Radenkovic's second theorem: the associated material of the reduced strength tan(phi*) =
+        # sin(phi) carries no more than the non-associated one, so the Davis value at psi = 0 is a
+        # lower bound where it is an exact associated solution (the smooth-base characteristics
+        # value; the rough base has only Hansen's design formula, which bounds nothing)
+        N_gamma_lower_bound=davis if davis_kind == "estimate" else None,
+        lower_bound_reference=_LOWER_BOUND,
     )
     out["N_q"] = float(reissner1924_nq(phi))
     out["N_c"] = float(prandtl1921_nc(phi))
@@ -373,6 +381,14 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
         if r["kind"].startswith("published")
     ]
     return out
+
+
+_LOWER_BOUND = (
+    "lower bound: a non-associated Mohr-Coulomb material carries no less than the associated one with "
+    "the reduced strength tan(phi*) = sin(phi), c* = c cos(phi) (Radenkovic's second theorem, J. Radenkovic, "
+    "C. R. Acad. Sci. Paris 252 (1961) 4103-4104; the psi = 0 case of Davis 1968); N_gamma(phi*) from "
+    "terradyn's method of characteristics (smooth base only)"
+)
 
 
 def compare_n_gamma(n_gamma: float, reference: dict[str, Any]) -> dict[str, Any]:
@@ -395,6 +411,7 @@ def compare_n_gamma(n_gamma: float, reference: dict[str, Any]) -> dict[str, Any]
 
     bound = reference.get("N_gamma_upper_bound")
     cone = reference.get("N_gamma_upper_bound_cone")
+    lower = reference.get("N_gamma_lower_bound")
     return {
         "N_gamma": value,
         "ratio_to_reference": ratio("N_gamma_reference"),
@@ -404,4 +421,6 @@ def compare_n_gamma(n_gamma: float, reference: dict[str, Any]) -> dict[str, Any]
         "exceeds_upper_bound": None if not bound else value > float(bound),
         "ratio_to_upper_bound_cone": ratio("N_gamma_upper_bound_cone"),
         "exceeds_upper_bound_cone": None if not cone else value > float(cone),
+        "ratio_to_lower_bound": ratio("N_gamma_lower_bound"),
+        "below_lower_bound": None if not lower else value < float(lower),
     }

@@ -99,6 +99,15 @@ class StripFootingResult:
             rec["ratio_mpm_to_reference"] = self.N_gamma_mpm / float(ref)
         if "N_gamma_associated" in self.reference:
             rec["N_gamma_associated"] = self.reference["N_gamma_associated"]
+        # the rigorous bracket of a psi = 0 value (Radenkovic's theorems), None where unknown
+        lower = self.reference.get("N_gamma_lower_bound")
+        upper = self.reference.get("N_gamma_upper_bound")
+        rec["N_gamma_lower_bound"], rec["N_gamma_upper_bound"] = lower, upper
+        rec["within_bounds"] = (
+            None
+            if lower is None and upper is None
+            else (lower is None or self.N_gamma_mpm >= lower) and (upper is None or self.N_gamma_mpm <= upper)
+        )
         return rec
 
 
