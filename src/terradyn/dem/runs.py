@@ -7,9 +7,14 @@ Each history row is the mean over one record interval of the contact force (and 
 reference point) on the body, at the mean position of the interval.
 
 Checkpoints are LAMMPS restart files (atoms, contact histories, fix states) beside a JSON file of the
-run's parameters and the history so far; ``resume=True`` continues from them. The resumed run starts
-from the saved state (its first row agrees with the uninterrupted run's to round-off, about 1e-8);
-granular dynamics then amplify round-off, so later rows agree statistically, not bit for bit.
+run's parameters and the history so far (and the animation frames, ``.frames.npz``); ``resume=True``
+continues from them and repeats the uninterrupted run bit for bit. Why that needs care: every LAMMPS
+``run`` starts with a setup whose force evaluation uses full-step velocities (not the half-step ones
+of a normal step) and, in ``pair granular`` and ``fix wall/gran``, rescales the tangential history of
+sliding contacts to the Coulomb limit with them; a setup therefore changes the state at round-off
+level, and a run with one more setup than another diverges from it. Here every chunk boundary has
+exactly one extra setup (:func:`_boundary`) in every run, snapshots and checkpoints are taken right
+after it, and a resumed run starts with the next chunk without repeating it.
 """
 
 from __future__ import annotations
@@ -31,6 +36,7 @@ from ..materials import Material
 from . import bed as _bed
 from ._lammps import is_root, new_lammps
 from .bed import BODY_TYPE, Bed, BedKind, BedSpec, Packing, check_speed, prepare_bed
+from .fields import FieldRecorder, frame_every, rows_between
 from .intruders import WALL_DIAMETER_FRACTION, body_spheres, rotated_extent
 
 __all__ = ["DEMIntrusionResult", "default_bed_spec", "run_intrusion"]
@@ -53,6 +59,14 @@ class DEMIntrusionResult:
     history: dict[str, np.ndarray]
     summary: dict[str, Any]
     bed: dict[str, Any] = field(default_factory=dict)
+    #: per-grain fields at the end of the run (:func:`terradyn.dem.fields.grain_fields`)
+    final_particles: dict[str, np.ndarray] | None = None
+    #: animation frames over the run and the last state, as :func:`terradyn.plotting.mpm.animate_frames`
+    #: draws them
+    frames: list[dict[str, np.ndarray]] = field(default_factory=list)
+    final_frame: dict[str, np.ndarray] | None = None
+    #: snapshot files written by this call (a resumed run lists only its own)
+    snapshots: list[Path] = field(default_factory=list)
 
     def to_dataframe(self) -> Any:
         import pandas as pd
@@ -110,20 +124,51 @@ def _state(params: dict[str, Any], history: dict[str, list[float]], step: int) -
     return json.dumps({"params": params, "history": history, "step": step})
 
 
+def checkpoint_files(path: str | Path) -> tuple[Path, Path, Path]:
+    """The files of a DEM checkpoint: LAMMPS restart, JSON side file, animation frames (.npz)."""
+    p = Path(path)
+    return p, p.with_name(p.name + ".json"), p.with_name(p.name + ".frames.npz")
+
+
 def _write_checkpoint(lmp: Any, path: Path, params: dict[str, Any], history: dict[str, list[float]],
-                      step: int) -> None:  # fmt: skip
-    """Restart file and JSON side file, each written to a temporary name and moved into place."""
+                      step: int, frames: list[dict[str, np.ndarray]] | None = None) -> None:  # fmt: skip
+    """Restart file, JSON side file (and the animation frames so far), each written to a temporary
+    name and moved into place. Called right after a chunk-boundary setup (:func:`_boundary`): that
+    setup copies the contact histories into the per-atom arrays the restart file holds."""
+    _restart, side, frames_path = checkpoint_files(path)
     tmp = path.with_name(f".{path.name}.tmp")
-    # a setup first: LAMMPS copies the contact histories into the per-atom arrays a restart file holds
-    # only when it re-neighbours, so without it the file would carry those of the last re-neighbouring
-    lmp.command("run 0 post no")
     lmp.command(f"write_restart {tmp}")
     if is_root(lmp):
-        side = path.with_name(path.name + ".json")
         side_tmp = side.with_name(f".{side.name}.tmp")
         side_tmp.write_text(_state(params, history, step), encoding="utf-8")
+        if frames:
+            frames_tmp = frames_path.with_name(f".{frames_path.name}.tmp")
+            with open(frames_tmp, "wb") as fh:
+                np.savez(fh, **_stack_frames(frames))  # type: ignore[arg-type]
+            os.replace(frames_tmp, frames_path)
         os.replace(tmp, path)
         os.replace(side_tmp, side)
+
+
+def _stack_frames(frames: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
+    """Frames as flat arrays: ``k<i>_<key>`` for frame i (the grain count of a frame may differ)."""
+    return {f"k{i}_{key}": np.asarray(v) for i, fr in enumerate(frames) for key, v in fr.items()}
+
+
+def _load_frames(path: Path) -> list[dict[str, np.ndarray]]:
+    if not path.is_file():
+        return []
+    with np.load(path, allow_pickle=False) as data:
+        out: dict[int, dict[str, np.ndarray]] = {}
+        for name in data.files:
+            head, key = name.split("_", 1)
+            out.setdefault(int(head[1:]), {})[key] = data[name]
+    return [out[i] for i in sorted(out)]
+
+
+def _boundary(lmp: Any) -> None:
+    """A LAMMPS setup at a chunk boundary, in fresh and resumed runs alike (see the module notes)."""
+    lmp.command("run 0 post no")
 
 
 def _body_fixes(lmp: Any, params: dict[str, Any]) -> None:
@@ -162,9 +207,16 @@ def run_intrusion(
     resume: bool = False,
     progress: Callable[[float, float], None] | None = None,
     stop_after_rows: int | None = None,
+    snapshot_dir: str | Path | None = None,
+    snapshot_interval: float | None = None,
+    frame_count: int = 0,
 ) -> DEMIntrusionResult:
     """Push ``body`` at ``speed`` [m/s] along ``direction`` [rad below +x], rotated by ``angle`` [rad],
     until its reference point is ``depth`` [m] below the surface of a DEM bed of ``material``.
+
+    ``snapshot_dir``: per-grain NetCDF snapshots (fields extra) every ``snapshot_interval`` [s] of
+    simulated time (default: two grain diameters of travel); ``frame_count`` light frames over the
+    run for an animation (``result.frames``). The final grain fields are in ``result.final_particles``.
 
     ``bed`` is a prepared bed (it is consumed: the body is added to it); else ``bed_spec`` or
     :func:`default_bed_spec` is poured and settled. ``record_spacing`` is the travel [m] per history row
@@ -181,7 +233,9 @@ def run_intrusion(
     if resume:
         if ckpt is None or not ckpt.is_file():
             raise InputError("checkpoint_path", checkpoint_path, "an existing checkpoint with resume")
-        return _resume(ckpt, checkpoint_interval, progress, stop_after_rows)
+        outputs = {"snapshot_dir": snapshot_dir, "snapshot_interval": snapshot_interval,
+                   "frame_count": frame_count}  # fmt: skip
+        return _resume(ckpt, checkpoint_interval, progress, stop_after_rows, body, outputs)
     dem = material.require_dem()
     d = grain_diameter if grain_diameter is not None else dem.grain_diameter
     if bed is None:
@@ -266,18 +320,53 @@ def run_intrusion(
     _body_fixes(lmp, params)
     history: dict[str, list[float]] = {k: [] for k in HISTORY_KEYS}
     try:
-        return _loop(lmp, params, history, 0, ckpt, checkpoint_interval, progress, stop_after_rows)
+        recorder = _recorder(body, params, snapshot_dir, snapshot_interval, frame_count)
+        return _loop(lmp, params, history, 0, ckpt, checkpoint_interval, progress, stop_after_rows, recorder)
     finally:
         bed.lmp = None
         lmp.close()
 
 
+def _recorder(body: Body, params: dict[str, Any], snapshot_dir: str | Path | None,
+              snapshot_interval: float | None, frame_count: int) -> FieldRecorder:  # fmt: skip
+    """Snapshots and frames of an intrusion (every row a whole number of history rows apart)."""
+    d, row_time = params["grain_diameter"], params["chunk"] * params["dt"]
+    if snapshot_interval is not None:
+        snapshot_interval = check_finite("snapshot_interval", snapshot_interval)
+        if not snapshot_interval > 0:
+            raise InputError("snapshot_interval", snapshot_interval, "a time > 0 [s]")
+    if not isinstance(frame_count, int) or not 0 <= frame_count <= 500:
+        raise InputError("frame_count", frame_count, "an integer in [0, 500]")
+    folder = Path(snapshot_dir) if snapshot_dir is not None else None
+    box = params["box"]
+    mid = 0.5 * (box[2] + box[3])
+    y_slice = None if params["bed_kind"] == BedKind.SLAB.value else (mid - 2.0 * d, mid + 2.0 * d)
+    attrs = {
+        "run": "dem intrusion",
+        "material": params["material"],
+        "grain_diameter_m": d,
+        "bed_kind": params["bed_kind"],
+        "bed_thickness_m": box[3] - box[2],
+        "speed_m_s": params["speed"],
+        "direction_rad": params["direction"],
+        "gravity_m_s2": params["gravity"],
+        "body_pose": "reference point x, z [m] and rotation theta about +y [rad]",
+    }
+    return FieldRecorder(
+        body, params["surface"], d, snapshot_dir=folder,
+        snapshot_every=rows_between(snapshot_interval, row_time, 2.0 * d / params["speed"]) if folder else 0,
+        frame_every=frame_every(frame_count, params["rows"]), y_slice=y_slice, attrs=attrs,
+    )  # fmt: skip
+
+
 def _resume(ckpt: Path, interval: float, progress: Callable[[float, float], None] | None,
-            stop_after_rows: int | None) -> DEMIntrusionResult:  # fmt: skip
-    side = ckpt.with_name(ckpt.name + ".json")
+            stop_after_rows: int | None, body: Body,
+            outputs: dict[str, Any]) -> DEMIntrusionResult:  # fmt: skip
+    _restart, side, frames_path = checkpoint_files(ckpt)
     try:
         state = json.loads(side.read_text(encoding="utf-8"))
         params, history, step = state["params"], state["history"], int(state["step"])
+        frames = _load_frames(frames_path)
     except (OSError, ValueError, KeyError) as exc:
         raise InputError("checkpoint", str(ckpt), "a terradyn DEM checkpoint with its .json file",
                          " ".join(str(exc).split())[:100]) from None  # fmt: skip
@@ -292,52 +381,97 @@ def _resume(ckpt: Path, interval: float, progress: Callable[[float, float], None
                                 friction=dem.friction, rolling=dem.rolling_friction,
                                 gravity=params.get("gravity", 9.81))  # fmt: skip
         _body_fixes(lmp, params)
-        return _loop(lmp, params, history, step, ckpt, interval, progress, stop_after_rows)
+        recorder = _recorder(body, params, **outputs)
+        recorder.frames = frames if recorder.frame_every > 0 else []
+        return _loop(lmp, params, history, step, ckpt, interval, progress, stop_after_rows, recorder)
     finally:
         lmp.close()
 
 
+def _pose(params: dict[str, Any], time_s: float) -> tuple[float, float, float]:
+    """The body's reference point and rotation (x, z, theta) in terradyn's frame at ``time_s``."""
+    vx, vz = params["velocity"]
+    x0, z0, theta = params["start"]
+    return (x0 + vx * time_s, z0 + vz * time_s, theta)
+
+
+def _record_row(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], step: int) -> None:
+    """The history row of the chunk that ended at ``step`` (means of the force averaging fix)."""
+    chunk, dt = params["chunk"], params["dt"]
+    t_mid = (step - 0.5 * chunk) * dt
+    fx = float(lmp.extract_fix("td_avg", 0, 1, 0))
+    fz = float(lmp.extract_fix("td_avg", 0, 1, 1))
+    ty = float(lmp.extract_fix("td_avg", 0, 1, 2))
+    x, z, _theta = _pose(params, t_mid)
+    values = (t_mid, -z, x, z, fx, fz, ty)
+    for key, value in zip(HISTORY_KEYS, values, strict=True):
+        history[key].append(value)
+
+
 def _loop(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], step: int, ckpt: Path | None,
           interval: float, progress: Callable[[float, float], None] | None,
-          stop_after_rows: int | None) -> DEMIntrusionResult:  # fmt: skip
+          stop_after_rows: int | None, recorder: FieldRecorder) -> DEMIntrusionResult:  # fmt: skip
+    """Chunks of ``chunk`` steps, one history row each.
+
+    Every chunk boundary has one LAMMPS setup (:func:`_boundary`) before the next chunk's own, and
+    snapshots, frames and checkpoints are taken right after it: a run that writes them follows the
+    same trajectory as one that does not. A checkpoint holds the state after that setup, so a resumed
+    run (``step > 0``) starts with the chunk directly: it repeats the uninterrupted run bit for bit."""
     chunk, rows, dt = params["chunk"], params["rows"], params["dt"]
-    vx, vz = params["velocity"]
-    x0, z0, _theta = params["start"]
     last_save = time.perf_counter()
     done_here = 0
     row = len(history["time_s"])
+    step0, row0 = step, row
+    # a resumed run starts from the state after the boundary setup and the snapshot of its step
+    boundary_at, recorded = (step, row) if row > 0 else (-1, 0)
+    recorder.prepare(lmp)
+
+    def settle_boundary() -> None:
+        nonlocal boundary_at, recorded
+        if boundary_at != step:
+            _boundary(lmp)
+            boundary_at = step
+        if row > 0 and recorded != row:
+            recorder.row(lmp, row, step, step * dt, _pose(params, step * dt))
+            recorded = row
+
     try:
         while row < rows:
+            settle_boundary()
+            if ckpt is not None and row > 0 and time.perf_counter() - last_save > interval:
+                _write_checkpoint(lmp, ckpt, params, history, step, recorder.frames)
+                last_save = time.perf_counter()
             lmp.command(f"run {chunk}")
             step += chunk
-            t_mid = (step - 0.5 * chunk) * dt
-            fx = float(lmp.extract_fix("td_avg", 0, 1, 0))
-            fz = float(lmp.extract_fix("td_avg", 0, 1, 1))
-            ty = float(lmp.extract_fix("td_avg", 0, 1, 2))
-            x, z = x0 + vx * t_mid, z0 + vz * t_mid
-            for key, value in zip(HISTORY_KEYS, (t_mid, -z, x, z, fx, fz, ty), strict=True):
-                history[key].append(value)
+            _record_row(lmp, params, history, step)
             row += 1
             done_here += 1
             if progress is not None:
-                progress(-z, 0.3 + 0.7 * row / rows)
-            if ckpt is not None and row < rows and time.perf_counter() - last_save > interval:
-                _write_checkpoint(lmp, ckpt, params, history, step)
-                last_save = time.perf_counter()
+                progress(history["depth_m"][-1], 0.3 + 0.7 * row / rows)
             if stop_after_rows is not None and done_here >= stop_after_rows and row < rows:
-                if ckpt is not None:
-                    _write_checkpoint(lmp, ckpt, params, history, step)
                 raise KeyboardInterrupt
+        settle_boundary()
+        final = recorder.final(lmp, step, step * dt, _pose(params, step * dt))
     except KeyboardInterrupt as exc:
-        if ckpt is not None and stop_after_rows is None:
-            _write_checkpoint(lmp, ckpt, params, history, step)
+        # the rows recorded say where the run is; an interrupt that lands between the end of a chunk
+        # and its row records that row first
+        row = len(history["time_s"])
+        step = step0 + (row - row0) * chunk
+        if int(lmp.extract_global("ntimestep")) == step + chunk:
+            step += chunk
+            _record_row(lmp, params, history, step)
+            row += 1
+        if ckpt is not None:
+            settle_boundary()
+            _write_checkpoint(lmp, ckpt, params, history, step, recorder.frames)
             exc.checkpoint_path = ckpt  # type: ignore[attr-defined]
         exc.time_s = step * dt  # type: ignore[attr-defined]
         raise
-    return _result(params, history)
+    return _result(params, history, recorder, final)
 
 
-def _result(params: dict[str, Any], history: dict[str, list[float]]) -> DEMIntrusionResult:
+def _result(params: dict[str, Any], history: dict[str, list[float]], recorder: FieldRecorder,
+            final: tuple[dict[str, np.ndarray], dict[str, np.ndarray]]) -> DEMIntrusionResult:  # fmt: skip
     h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
     for key in ("force_x_N", "force_z_N", "torque_y_Nm"):
         h[key] = h[key] * params["force_scale"]
@@ -357,7 +491,9 @@ def _result(params: dict[str, Any], history: dict[str, list[float]]) -> DEMIntru
         "grain_count": params["grain_count"],
         "body_spheres": params["body_spheres"],
     }
-    return DEMIntrusionResult(h, summary, dict(params["bed"]))
+    return DEMIntrusionResult(h, summary, dict(params["bed"]), final_particles=final[0],
+                              frames=list(recorder.frames), final_frame=final[1],
+                              snapshots=list(recorder.written))  # fmt: skip
 
 
 def _dem_dict(bed: Bed) -> dict[str, Any]:

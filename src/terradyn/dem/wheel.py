@@ -17,6 +17,7 @@ import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -25,6 +26,7 @@ from ..errors import InputError, check_finite, check_positive
 from ..geometry import Body
 from ..materials import Material
 from .bed import BODY_TYPE, Bed, BedKind, BedSpec, Packing, prepare_bed
+from .fields import FieldRecorder, frame_every, rows_between
 from .intruders import body_spheres, rotated_extent
 from .runs import _add_atoms, _start_gap
 
@@ -40,6 +42,12 @@ class DEMWheelResult:
     history: dict[str, np.ndarray]
     summary: dict[str, Any]
     bed: dict[str, Any] = field(default_factory=dict)
+    #: per-grain fields at the end (:func:`terradyn.dem.fields.grain_fields`), animation frames and the
+    #: last state (as :func:`terradyn.plotting.mpm.animate_frames` draws them), snapshot files written
+    final_particles: dict[str, np.ndarray] | None = None
+    frames: list[dict[str, np.ndarray]] = field(default_factory=list)
+    final_frame: dict[str, np.ndarray] | None = None
+    snapshots: list[Path] = field(default_factory=list)
 
     def to_dataframe(self) -> Any:
         import pandas as pd
@@ -82,11 +90,16 @@ def run_wheel(
     record_interval: float | None = None,
     gravity: float = 9.81,
     progress: Callable[[float, float], None] | None = None,
+    snapshot_dir: str | Path | None = None,
+    snapshot_interval: float | None = None,
+    frame_count: int = 0,
 ) -> DEMWheelResult:
     """Roll ``body`` at spin ``omega`` [rad/s] and slip ``slip`` under ``load`` [N] for ``duration`` [s].
 
     The wheel starts at x = -travel/2 (travel = V duration) and ends near x = +travel/2. Gravity is
-    that of the bed (``BedSpec.gravity``); the wheel's mass is ``load / gravity``."""
+    that of the bed (``BedSpec.gravity``); the wheel's mass is ``load / gravity``. ``snapshot_dir``:
+    per-grain NetCDF snapshots every ``snapshot_interval`` [s] (default duration / 20);
+    ``frame_count`` animation frames over the run (``result.frames``)."""
     r = _radius(body)
     load = check_positive("load", load)
     omega = check_finite("omega", omega)
@@ -96,6 +109,12 @@ def run_wheel(
     if not -1.0 <= slip < 1.0:
         raise InputError("slip", slip, "a slip in [-1, 1)")
     duration = check_positive("duration", duration)
+    if snapshot_interval is not None:
+        snapshot_interval = check_positive("snapshot_interval", snapshot_interval)
+    if not isinstance(frame_count, int) or not 0 <= frame_count <= 500:
+        raise InputError("frame_count", frame_count, "an integer in [0, 500]")
+    outputs = {"snapshot_dir": None if snapshot_dir is None else Path(snapshot_dir),
+               "snapshot_interval": snapshot_interval, "frame_count": frame_count}  # fmt: skip
     velocity = (1.0 - slip) * omega * r
     travel = abs(velocity) * duration
     dem = material.require_dem()
@@ -112,7 +131,7 @@ def run_wheel(
     lmp = bed.lmp
     try:
         return _roll(bed, body, r, load, omega, velocity, slip, duration, travel, record_interval, progress,
-                     material.name)  # fmt: skip
+                     material.name, outputs)  # fmt: skip
     finally:
         bed.lmp = None
         lmp.close()
@@ -120,7 +139,8 @@ def run_wheel(
 
 def _roll(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: float, slip: float,
           duration: float, travel: float, record_interval: float | None,
-          progress: Callable[[float, float], None] | None, material_name: str) -> DEMWheelResult:  # fmt: skip
+          progress: Callable[[float, float], None] | None, material_name: str,
+          outputs: dict[str, Any]) -> DEMWheelResult:  # fmt: skip
     lmp, d, dt = bed.lmp, bed.dem.grain_diameter, bed.dt
     x_start = -0.5 * travel
     if x_start - r < bed.box[0] + 2 * d or 0.5 * travel + r > bed.box[1] - 2 * d:
@@ -168,8 +188,19 @@ def _roll(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: f
     ):
         lmp.command(line)
     hist: dict[str, list[float]] = {k: [] for k in WHEEL_HISTORY}
+    recorder = _recorder(bed, body, outputs, chunk * dt, rows, duration, material_name, velocity, omega)
+    recorder.prepare(lmp)
+
+    def pose(t: float) -> tuple[float, float, float]:
+        x = float(lmp.extract_variable("td_xr"))
+        return (x, float(lmp.extract_variable("td_zr")) - bed.surface, omega * t)
+
     step = 0
     for row in range(rows):
+        # one setup at every chunk boundary, snapshots right after it (they do not perturb the run)
+        lmp.command("run 0 post no")
+        if row > 0:
+            recorder.row(lmp, row, step, step * dt, pose(step * dt))
         lmp.command(f"run {chunk}")
         step += chunk
         fx = float(lmp.extract_fix("td_avg", 0, 1, 0)) * scale
@@ -182,6 +213,9 @@ def _roll(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: f
             hist[key].append(value)
         if progress is not None:
             progress(step * dt, 0.3 + 0.7 * (row + 1) / rows)
+    lmp.command("run 0 post no")
+    recorder.row(lmp, rows, step, step * dt, pose(step * dt))
+    final = recorder.final(lmp, step, step * dt, pose(step * dt))
     h = {k: np.asarray(v) for k, v in hist.items()}
     late = h["time_s"] > 0.5 * duration
     summary = {
@@ -196,4 +230,29 @@ def _roll(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: f
         "grain_count": n0,
         "material": material_name,
     }
-    return DEMWheelResult(h, summary, bed.summary())
+    return DEMWheelResult(h, summary, bed.summary(), final_particles=final[0], frames=list(recorder.frames),
+                          final_frame=final[1], snapshots=list(recorder.written))  # fmt: skip
+
+
+def _recorder(bed: Bed, body: Body, outputs: dict[str, Any], row_time: float, rows: int, duration: float,
+              material_name: str, velocity: float, omega: float) -> FieldRecorder:  # fmt: skip
+    d = bed.dem.grain_diameter
+    mid = 0.5 * (bed.box[2] + bed.box[3])
+    folder = outputs["snapshot_dir"]
+    attrs = {
+        "run": "dem wheel",
+        "material": material_name,
+        "grain_diameter_m": d,
+        "bed_kind": bed.spec.kind.value,
+        "bed_thickness_m": bed.thickness,
+        "forward_velocity_m_s": velocity,
+        "omega_rad_s": omega,
+        "gravity_m_s2": bed.spec.gravity,
+        "body_pose": "axle x, z [m] and wheel rotation theta about +y [rad]",
+    }
+    every = rows_between(outputs["snapshot_interval"], row_time, duration / 20.0) if folder is not None else 0
+    return FieldRecorder(
+        body, bed.surface, d, snapshot_dir=folder, snapshot_every=every,
+        frame_every=frame_every(outputs["frame_count"], rows),
+        y_slice=None if bed.spec.kind is BedKind.SLAB else (mid - 2.0 * d, mid + 2.0 * d), attrs=attrs,
+    )  # fmt: skip

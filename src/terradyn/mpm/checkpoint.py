@@ -243,16 +243,23 @@ def input_differences(saved: Mapping[str, Any], current: Mapping[str, Any]) -> l
     return kind or named or out
 
 
-def write_snapshot(path: str | Path, fields: dict[str, np.ndarray], attrs: dict[str, Any]) -> Path:
+def write_snapshot(
+    path: str | Path,
+    fields: dict[str, np.ndarray],
+    attrs: dict[str, Any],
+    *,
+    units: Mapping[str, str] | None = None,
+) -> Path:
     """Write particle ``fields`` (each (N,)) as NetCDF with xarray (lazy import): HDF5-based NetCDF4 via
-    h5netcdf when h5py is available, else NetCDF3 via scipy."""
+    h5netcdf when h5py is available, else NetCDF3 via scipy. ``units`` names the units of fields
+    beyond the MPM ones (or overrides them); every variable carries its ``units`` attribute."""
     try:
         import xarray as xr
     except ImportError:  # pragma: no cover - optional extra
         raise InputError(
             "snapshot_path", str(path), "xarray and h5netcdf installed", "pip install terradyn[fields]"
         ) from None
-    units = {
+    unit_of = {
         "x": "m",
         "z": "m",
         "vx": "m/s",
@@ -264,9 +271,10 @@ def write_snapshot(path: str | Path, fields: dict[str, np.ndarray], attrs: dict[
         "pressure": "Pa",
         "density": "kg/m^3",
         "plastic_shear_rate": "1/s",
+        **(units or {}),
     }
     ds = xr.Dataset(
-        {k: ("particle", np.asarray(v), {"units": units.get(k, "")}) for k, v in fields.items()},
+        {k: ("particle", np.asarray(v), {"units": unit_of.get(k, "")}) for k, v in fields.items()},
         attrs={
             k: (float(v) if isinstance(v, int | float | np.floating) else str(v)) for k, v in attrs.items()
         },
