@@ -46,6 +46,7 @@ from numba import njit
 from numpy.typing import NDArray
 
 __all__ = [
+    "TAN_PSI_LIMIT",
     "dilatancy_slope",
     "dk_dilatant_stress_update",
     "dk_dilatant_stress_update_reference",
