@@ -25,6 +25,7 @@ from terradyn.dem import (
     run_intrusion,
     save_bed,
 )
+from terradyn.dem.runs import checkpoint_files
 from terradyn.errors import InputError, SolverError
 from terradyn.geometry import Cylinder, Plate, Wedge, WheelCircular
 
@@ -113,17 +114,28 @@ def test_restart_repeats_the_uninterrupted_run_bit_for_bit(medium, bed_file, pla
     checkpoint holds the state after it (see terradyn.dem.runs)."""
     ckpt = tmp_path / "run.restart"
     stop = 10
+    row_time = float(np.diff(plate_run.history["time_s"][:2])[0])
+    # snapshots every row and animation frames: they ride along without changing the trajectory
+    outputs = {"snapshot_dir": tmp_path / "snaps", "snapshot_interval": row_time, "frame_count": 13}
     with pytest.raises(KeyboardInterrupt) as info:
         run_intrusion(PLATE, medium, bed=load_bed(bed_file[0]), checkpoint_path=ckpt, stop_after_rows=stop,
-                      checkpoint_interval=0.0, **RUN)  # fmt: skip
+                      checkpoint_interval=0.0, **RUN, **outputs)  # fmt: skip
     assert info.value.checkpoint_path == ckpt
-    assert ckpt.is_file() and ckpt.with_name(ckpt.name + ".json").is_file()
-    resumed = run_intrusion(PLATE, medium, checkpoint_path=ckpt, resume=True, **RUN)
+    assert all(p.is_file() for p in checkpoint_files(ckpt))  # restart, parameters, frames
+    resumed = run_intrusion(PLATE, medium, checkpoint_path=ckpt, resume=True, **RUN, **outputs)
     a, b = plate_run.history, resumed.history
-    assert len(a["time_s"]) == len(b["time_s"]) > stop + 5
+    rows = len(a["time_s"])
+    assert len(b["time_s"]) == rows > stop + 5
     for key in a:
         np.testing.assert_array_equal(b[key], a[key], err_msg=key)
     assert resumed.summary == plate_run.summary
+    # every row's snapshot exactly once over the two calls; the frames of both calls, in order
+    assert len(list((tmp_path / "snaps").glob("grains_*.nc"))) == rows
+    assert len(resumed.snapshots) == rows - stop
+    steps = [int(f["step"]) for f in resumed.frames]
+    every = rows // 13  # rows between frames
+    chunk = int(steps[0]) // every  # steps per row
+    assert steps == [k * every * chunk for k in range(1, rows // every + 1)]
 
 
 def test_snapshots_and_frames_leave_the_run_unchanged(medium, bed_file, plate_run, tmp_path):
@@ -274,12 +286,20 @@ def test_body_spheres_cover_the_outline_without_gaps(body):
 
 
 @pytest.mark.slow
-def test_wheel_carries_its_load_and_sinks(medium):
+def test_wheel_carries_its_load_and_sinks(medium, tmp_path):
     from terradyn.dem.wheel import run_wheel
 
     res = run_wheel(WheelCircular(8 * D, 0.05), medium, load=0.5, omega=3.0, slip=0.2, duration=0.25,
-                    grain_diameter=D, packing="loose", record_interval=0.025)  # fmt: skip
+                    grain_diameter=D, packing="loose", record_interval=0.025, snapshot_dir=tmp_path,
+                    snapshot_interval=0.05, frame_count=5)  # fmt: skip
     s = res.summary
+    # snapshots every other row, frames every other row, the wheel's pose in each: axle at its height
+    assert len(res.snapshots) == 5 and len(res.frames) == 5
+    from terradyn.mpm.checkpoint import read_snapshot
+
+    last = read_snapshot(res.snapshots[-1])
+    assert last.attrs["body_theta_rad"] == pytest.approx(3.0 * last.attrs["time_s"])
+    assert last.attrs["body_z_m"] == pytest.approx(8 * D - res.history["sinkage_m"][-1], abs=0.5 * D)
     # free vertical motion: once rolling, the soil's vertical force balances the load
     assert s["vertical_force_N"] == pytest.approx(0.5, rel=0.15)
     assert 0 < s["sinkage_m"] < 8 * D
