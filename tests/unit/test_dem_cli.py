@@ -199,3 +199,18 @@ def test_calibrate_from_dem_takes_the_parallel_flags(run_cli, monkeypatch):
     code, _, err = run_cli("calibrate", "rft", "--from-dem", "generic", "--length", "0.01", "--width", "0.01",
                            "--scheduler", "nope")  # fmt: skip
     assert code == 1 and "--scheduler" in err
+
+
+@pytest.mark.slow
+def test_dem_sweep_gives_the_same_rows_serially_and_on_worker_processes(run_cli, soft_medium):
+    rows = {}
+    for scheduler in ("serial", "processes"):
+        code, out, err = run_cli("dem", "sweep", "plate", "--length", "0.012", "--depths", "0.004,0.002",
+                                 "--grain-diameter", "0.002", "--material", soft_medium, "--packing", "loose",
+                                 "--speed", "0.04", "--scheduler", scheduler, "--workers", "2",
+                                 "--format", "json")  # fmt: skip
+        assert code == 0, err
+        rows[scheduler] = json.loads(out)
+    assert rows["serial"] == rows["processes"]  # bit for bit, in case order
+    assert [r["depth_m"] for r in rows["serial"]] == [0.004, 0.002]
+    assert rows["serial"][0]["force_z_N"] > rows["serial"][1]["force_z_N"] > 0
