@@ -130,7 +130,7 @@ def test_restart_repeats_the_uninterrupted_run_bit_for_bit(medium, bed_file, pla
         np.testing.assert_array_equal(b[key], a[key], err_msg=key)
     assert resumed.summary == plate_run.summary
     # every row's snapshot exactly once over the two calls; the frames of both calls, in order
-    assert len(list((tmp_path / "snaps").glob("grains_*.nc"))) == rows
+    assert len(list((tmp_path / "snaps").glob("particles_*.nc"))) == rows
     assert len(resumed.snapshots) == rows - stop
     steps = [int(f["step"]) for f in resumed.frames]
     every = rows // 13  # rows between frames
@@ -149,7 +149,7 @@ def test_snapshots_and_frames_leave_the_run_unchanged(medium, bed_file, plate_ru
     for key in plate_run.history:  # snapshots are taken after the boundary setup every run has
         np.testing.assert_array_equal(res.history[key], plate_run.history[key], err_msg=key)
     rows = len(res.history["time_s"])
-    files = sorted(folder.glob("grains_*.nc"))
+    files = sorted(folder.glob("particles_*.nc"))
     assert files == sorted(res.snapshots) and len(files) == rows
     assert len(res.frames) >= 8 and {"x", "z", "speed", "segments", "time_s"} <= set(res.frames[0])
     first = read_snapshot(files[0])

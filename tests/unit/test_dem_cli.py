@@ -40,7 +40,7 @@ def test_dem_intrude_writes_snapshots_fields_and_animation(run_cli, soft_medium,
                              "--format", "json")  # fmt: skip
     assert code == 0, err
     assert json.loads(out)["force_z_N"] > 0
-    files = sorted(snaps.glob("grains_*.nc"))
+    files = sorted(snaps.glob("particles_*.nc"))
     assert len(files) >= 2
     ds = read_snapshot(files[-1])
     assert ds["x"].attrs["units"] == "m" and ds["pressure"].attrs["units"] == "Pa"
@@ -96,7 +96,7 @@ class _Stopped:
         self.kwargs = kwargs
         folder = kwargs["snapshot_dir"]
         folder.mkdir(parents=True, exist_ok=True)
-        (folder / "grains_000000010.nc").write_bytes(b"x")
+        (folder / "particles_000000010.nc").write_bytes(b"x")
         exc = KeyboardInterrupt()
         exc.time_s = 0.125
         if kwargs.get("checkpoint_path") is not None:
@@ -127,7 +127,7 @@ def test_a_stopped_run_with_checkpoint_keeps_its_snapshots(run_cli, soft_medium,
                            "--checkpoint", str(ckpt))  # fmt: skip
     assert code == 130
     assert "--resume" in err and "t = 0.125 s" in err
-    assert (snaps / "grains_000000010.nc").is_file() and ckpt.is_file()
+    assert (snaps / "particles_000000010.nc").is_file() and ckpt.is_file()
 
 
 def test_a_stopped_wheel_removes_its_snapshots(run_cli, soft_medium, tmp_path, monkeypatch):

@@ -180,7 +180,8 @@ class FieldRecorder:
             "stress": "per-grain contact virial / grain volume, tension positive",
             **self.attrs,
         }
-        path = write_snapshot(self.snapshot_dir / f"grains_{step:09d}.nc", fields, attrs, units=GRAIN_UNITS)
+        name = f"particles_{step:09d}.nc"  # as the MPM snapshots
+        path = write_snapshot(self.snapshot_dir / name, fields, attrs, units=GRAIN_UNITS)
         self.written.append(path)
         return path
 
