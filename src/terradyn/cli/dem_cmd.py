@@ -117,8 +117,14 @@ class FieldOutputs:
                 not frames or int(frames[-1]["step"]) != int(result.final_frame["step"])
             ):
                 frames.append(result.final_frame)
+            import numpy as np
+
+            # colour scale: the median over frames of each frame's 99.5th percentile, so a fast start
+            # (a wheel landing) saturates its own frames instead of darkening all the others
+            tops = [np.percentile(np.asarray(f["speed"], dtype=float), 99.5) for f in frames]
+            vmax = float(np.median(tops))
             with fraction_progress("rendering the animation", "frames") as update:
-                animate_frames(frames, self.animate, window=_extent(frames),
+                animate_frames(frames, self.animate, window=_extent(frames), vmax=max(vmax, 1e-12),
                                progress=lambda i, n: update(i + 1, (i + 1) / n))  # fmt: skip
 
 

@@ -126,11 +126,13 @@ def animate_frames(
     fps: int = 12,
     window: tuple[float, float, float, float] | None = None,
     progress: Any = None,
+    vmax: float | None = None,
 ) -> Path:
     """Write the frames of an MPM run (``result.frames``) as a GIF or MP4 of one particle quantity.
 
-    The colour scale is fixed over the whole animation (99.5th percentile of all frames). The file is
-    written atomically; MP4 needs the ``imageio-ffmpeg`` extra.
+    The colour scale is fixed over the whole animation: 0 to ``vmax`` (in the quantity's plotted
+    unit), by default the 99.5th percentile of all frames. The file is written atomically; MP4 needs
+    the ``imageio-ffmpeg`` extra.
     """
     import matplotlib
 
@@ -143,7 +145,8 @@ def animate_frames(
     check_animation_path(path, "--animate")
     if len(frames) < 2:
         raise InputError("frames", len(frames), "at least 2 frames (run with frame_count >= 2)")
-    vmax = max(float(np.percentile(_values(f, quantity), 99.5)) for f in frames)
+    if vmax is None:
+        vmax = max(float(np.percentile(_values(f, quantity), 99.5)) for f in frames)
     fig, ax = plt.subplots(figsize=(8, 3.5), layout="constrained")
     label = _LABELS.get(quantity, (quantity, ""))[0]
     first = _draw(ax, frames[0], quantity, frames[0].get("segments"), vmax)[0]
