@@ -107,6 +107,9 @@ def particle_steps_per_second(
 
 def main() -> None:
     quick = "--quick" in sys.argv
+    if "--wheel-only" in sys.argv:
+        default_wheel()
+        return
     model = GranularModel.from_material(materials.get("MS"))
     print(f"numba threads available: {numba.config.NUMBA_NUM_THREADS}")
     print(f"{'particles':>10} {'body':>6} {'1 thread':>12} {'2 threads':>12} {'2/1':>6}  [particle-steps/s]")
@@ -123,9 +126,6 @@ def main() -> None:
         )
     print(f"numba threading layer: {numba.threading_layer()}")
     if quick:
-        return
-    if "--wheel-only" in sys.argv:
-        default_wheel()
         return
     t0 = time.perf_counter()
     res = run_intrusion(Plate(0.05, 0.1), materials.get("MS"), depth=0.05)
@@ -162,7 +162,7 @@ def default_wheel(drive_seconds: float = 0.2) -> None:
     from terradyn.mpm import Bed, Drive, run_wheel
     from terradyn.mpm.runs import DRIVE_RADIANS, settle_time
 
-    wheel, ms = WheelCircular(0.065, 0.16), materials.get("MS")
+    wheel, ms = WheelCircular(0.13, 0.16), materials.get("MS")
     short = dict(load=130.0, omega=1.0, slip=0.3, bed=Bed(settle_time=0.01), drive=Drive(sink_time=0.01))
     run_wheel(wheel, ms, **{**short, "drive": Drive(sink_time=0.01, duration=0.01)})  # warm-up
     t0 = time.perf_counter()
@@ -174,7 +174,7 @@ def default_wheel(drive_seconds: float = 0.2) -> None:
     model = GranularModel.from_material(ms)
     full_steps = (
         round(settle_time(model, Bed(), md["bed_depth_m"]) / dt)
-        + round(3.0 * np.sqrt(0.065 / 9.81) / dt)
+        + round(3.0 * np.sqrt(0.13 / 9.81) / dt)
         + round(DRIVE_RADIANS / 1.0 / dt)
     )
     print(
