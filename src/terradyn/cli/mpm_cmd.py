@@ -80,6 +80,12 @@ class MPMOptions:
         help="Dilatancy coefficient K [-] of tan(psi) = K (phi - phi_c): dense beds dilate, loose ones "
         "compact and stay as loose as prepared; 0 = off (isochoric flow).",
     )
+    surface_friction = typer.Option(
+        None,
+        "--surface-friction",
+        help="Body-grain Coulomb friction [-] (0-2; default: the medium's, 0.4 in the shipped ones). "
+        "It limits a wheel's thrust: calibrate it with the bed before comparing pulls (docs/mpm.md).",
+    )
 
 
 def _dilatancy(value: float) -> float | None:
@@ -242,6 +248,7 @@ def intrude(
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
     dilatancy: float = MPMOptions.dilatancy,
+    surface_friction: float | None = MPMOptions.surface_friction,
     checkpoint: str | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
@@ -283,6 +290,9 @@ def intrude(
             resolution=resolution,
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             dilatancy=_dilatancy(dilatancy),
+            surface_friction=None
+            if surface_friction is None
+            else check_finite("--surface-friction", surface_friction),
         )
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)
@@ -353,6 +363,7 @@ def wheel(
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
     dilatancy: float = MPMOptions.dilatancy,
+    surface_friction: float | None = MPMOptions.surface_friction,
     checkpoint: str | None = MPMOptions.checkpoint,
     checkpoint_interval: float = MPMOptions.checkpoint_interval,
     resume: bool = MPMOptions.resume,
@@ -401,6 +412,9 @@ def wheel(
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             drive=Drive(duration=duration),
             dilatancy=_dilatancy(dilatancy),
+            surface_friction=None
+            if surface_friction is None
+            else check_finite("--surface-friction", surface_friction),
         )
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)

@@ -419,8 +419,8 @@ def run_intrusion(
     **legacy : the flat keywords of earlier releases (``cell_size=``, ``bed_depth=``,
         ``checkpoint_path=``..., each a field of one spec, see :data:`terradyn.mpm.specs.LEGACY`) and
         the model overrides ``youngs_modulus``, ``poisson_ratio``, ``friction_coefficient``,
-        ``surface_friction``, ``rate_dependent`` (single continuum parameters of the material). An
-        unknown keyword raises TypeError.
+        ``surface_friction``, ``rate_dependent``, ``dilatancy`` (single continuum parameters of the
+        material). An unknown keyword raises TypeError.
 
     Checkpoints: an existing ``checkpoint_path`` is never overwritten or removed by a fresh run
     (:class:`~terradyn.errors.InputError` unless ``resume``); a finished run keeps its final
