@@ -1,0 +1,46 @@
+"""The MPM rows of the report: registered for their items, and a quick row builds with computed numbers."""
+
+import math
+
+import pytest
+
+from terradyn.report import reproduce
+from terradyn.report.registry import item, rows_of
+
+MPM_ROWS = {
+    "ch9-plate-packing": "terradyn.mpm.report_rows:plate_packing",
+    "ch9-wedges": "terradyn.mpm.report_rows:wedges",
+    "fig-9-1": "terradyn.mpm.report_rows:footing",
+}
+
+
+def test_mpm_rows_are_registered_not_pending():
+    for key, spec in MPM_ROWS.items():
+        assert dict(rows_of(item(key)))["mpm"] == spec
+    # items whose MPM row is not written yet stay pending
+    assert dict(rows_of(item("fig-9-9")))["mpm"] is None
+
+
+@pytest.fixture(scope="module")
+def wedge_report(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("mpm_report")
+    return folder, reproduce(folder, quick=True, only=["ch9-wedges"])
+
+
+def test_quick_wedge_row_builds_beside_rft(wedge_report):
+    folder, run = wedge_report
+    assert run.failures == []
+    r = run.results[("ch9-wedges", "mpm")]
+    assert r["status"] == "ran" and r["figures"]
+    html = (folder / "report.html").read_text(encoding="utf-8")
+    assert "<b>MPM</b> (" in html and "<b>RFT</b> (" in html
+    rows = r["tables"]["wedges"]
+    sym = next(x for x in rows if x["tip_offset_m"] == 0.0)
+    asym = next(x for x in rows if x["tip_offset_m"] > 0.0)
+    # a symmetric wedge centred on the path feels (almost) no lateral force; an offset tip does
+    assert abs(sym["mpm_lateral_ratio"]) < 0.5 * abs(asym["mpm_lateral_ratio"])
+    assert all(math.isfinite(v) and v > 0 for v in (sym["mpm_ratio"], asym["mpm_ratio"]))
+    # the numbers in the text are the run's
+    texts = " ".join(f["text"] for f in r["findings"])
+    assert f"{asym['mpm_lateral_ratio']:+.3f}" in texts
+    assert f"{r['metrics']['plate_force_z_N']:.2f} N" in texts
