@@ -35,7 +35,7 @@ def test_quick_report_names_every_item_and_embeds_figures(quick_report):
     # models without a row are listed as pending, never silently dropped
     assert "pending" in html and "MPM" in html
     # the MPM rows that ship run in the quick report (terradyn.mpm.report_rows)
-    for key in ("ch9-plate-packing", "ch9-wedges", "fig-9-1"):
+    for key in ("ch9-plate-packing", "ch9-wedges", "fig-9-1", "fig-6-8"):
         assert run.results[(key, "mpm")]["status"] == "ran"
 
 

@@ -11,6 +11,7 @@ MPM_ROWS = {
     "ch9-plate-packing": "terradyn.mpm.report_rows:plate_packing",
     "ch9-wedges": "terradyn.mpm.report_rows:wedges",
     "fig-9-1": "terradyn.mpm.report_rows:footing",
+    "fig-6-8": "terradyn.mpm.report_rows:wheel_force_slip",
 }
 
 
