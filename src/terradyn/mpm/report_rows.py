@@ -487,7 +487,8 @@ def wheel_force_slip(quick: bool) -> ItemOutput:
         )
     out.findings.append(
         Finding(
-            "the pull depends on calibration: MS as shipped is weaker in MPM than its RFT medium and the "
+            "the load is 130 N, the MPM case of docs/mpm.md (the RFT row of this item runs 80 N); the "
+            "pull depends on calibration: MS as shipped is weaker in MPM than its RFT medium and the "
             "wheel-grain friction is 0.4 (docs/mpm.md, 'Why the pull is about zero at slip 0.3')"
             + ("; quick form: 25 mm cells, 1 s drive, not converged" if quick else ""),
             "info",
