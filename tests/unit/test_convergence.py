@@ -65,3 +65,17 @@ def test_converge_runs_coarse_to_fine_and_checks_inputs():
     with pytest.raises(InputError, match="quantities"):
         converge(run, [0.02, 0.01, 0.005], ["nosuch"])
     assert math.isfinite(res.wall_s[0])
+
+
+def test_changes_that_grow_on_refinement_get_no_extrapolation():
+    # measured: 60 mm plate at 40 mm depth, MS, 10 / 7.5 / 5 / 3.75 mm cells. The last change (16.0 N
+    # for a 1.33x refinement) exceeds the one before (6.3 N for 1.5x): no positive order fits. Taking
+    # the absolute value of Celik's fixed point had turned this into an order of 6.1 and a 4 N band.
+    sizes = [0.01, 0.0075, 0.005, 0.00375]
+    est = richardson(sizes, [226.4003, 211.2405, 204.9065, 188.8667])
+    assert est.order is None and est.extrapolated is None
+    assert "asymptotic" in est.note
+    assert est.error_band == pytest.approx(211.2405 - 188.8667)
+    # the same sizes with a converging power law still extrapolate
+    est = richardson(sizes, [100.0 + 50.0 * h**0.5 for h in sizes])
+    assert est.order == pytest.approx(0.5, rel=1e-6)

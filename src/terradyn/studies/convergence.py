@@ -67,6 +67,31 @@ class RichardsonEstimate:
         return abs(self.finest - self.extrapolated) / abs(self.extrapolated)
 
 
+def _observed_order(ratio: float, r21: float, r32: float) -> float:
+    """The order p > 0 with ``r21^p (r32^p - 1) / (r21^p - 1) = ratio`` (Celik et al. 2008, monotone
+    case; the left side grows with p), by bisection on log p; inf when beyond p = 64."""
+
+    def excess(p: float) -> float:
+        return (
+            p * math.log(r21)
+            + math.log(math.expm1(p * math.log(r32)) / math.expm1(p * math.log(r21)))
+            - math.log(ratio)
+        )
+
+    lo, hi = 1e-6, 64.0
+    if excess(hi) < 0:
+        return math.inf
+    for _ in range(200):
+        mid = math.sqrt(lo * hi)
+        if excess(mid) < 0:
+            lo = mid
+        else:
+            hi = mid
+        if hi / lo < 1.0 + 1e-13:
+            break
+    return math.sqrt(lo * hi)
+
+
 def richardson(cell_sizes: Sequence[float], values: Sequence[float]) -> RichardsonEstimate:
     """Observed order, extrapolated value and error band from results at three or more cell sizes.
 
@@ -88,21 +113,18 @@ def richardson(cell_sizes: Sequence[float], values: Sequence[float]) -> Richards
     if abs(e21) <= 1e-12 * scale or e32 * e21 < 0:
         return RichardsonEstimate(None, None, spread, f1, False, "the results oscillate with resolution")
     r21, r32 = h2 / h1, h3 / h2
-    s = 1.0
-    ratio = abs(e32 / e21)
-    p = abs(math.log(ratio)) / math.log(r21)
-    if p < 0.05:  # equal changes on unequal steps: start the fixed point at first order
-        p = 1.0
-    for _ in range(200):
-        try:
-            q = math.log((r21**p - s) / (r32**p - s))
-        except (ValueError, ZeroDivisionError, OverflowError):
-            break
-        p_new = abs(math.log(ratio) + q) / math.log(r21)
-        if abs(p_new - p) < 1e-10:
-            p = p_new
-            break
-        p = p_new
+    ratio = e32 / e21  # > 0 here (same sign)
+    lowest = math.log(r32) / math.log(r21)  # the ratio an order p -> 0+ gives
+    if ratio <= lowest * (1.0 + 1e-12):
+        # e32 / e21 = r21^p (r32^p - 1) / (r21^p - 1) grows with p from this value: no positive order
+        # fits, the changes do not shrink as the grid is refined (not in the asymptotic range)
+        note = (
+            f"no positive observed order fits: the change on the finest refinement ({e21:.4g}) is not "
+            f"smaller than the one before ({e32:.4g}) by the cell-size ratios; not in the asymptotic "
+            "range, no extrapolation"
+        )
+        return RichardsonEstimate(None, None, spread, f1, True, note)
+    p = _observed_order(ratio, r21, r32)
     if not (math.isfinite(p) and ORDER_RANGE[0] <= p <= ORDER_RANGE[1]):
         note = f"observed order {p:.3g} outside [{ORDER_RANGE[0]:g}, {ORDER_RANGE[1]:g}]: no extrapolation"
         return RichardsonEstimate(p, None, spread, f1, True, note)
