@@ -192,9 +192,8 @@ def wedges(quick: bool) -> ItemOutput:
     rows: list[dict[str, Any]] = []
     for height, offset in cases:
         wedge = Wedge(base=base, height=height, tip_offset=offset, width=width)
-        _, summary = _intrude(
-            wedge, depth + height, s, "consolidated", 0.0
-        )  # the origin is the tip: base at ``depth``
+        # the wedge's origin is its tip: the tip at depth + height puts the base at ``depth``
+        _, summary = _intrude(wedge, depth + height, s, "consolidated", 0.0)
         rft = intrusion_forces(wedge, mat, [depth + height]).columns
         rows.append(
             {
