@@ -12,6 +12,7 @@ from .. import materials
 from ..geometry import Body, Plate, WheelCircular
 from ..locomotion import wheel_steady
 from ..mpm.bodies import effective_body
+from ..mpm.runs import WHEEL_CELLS_ACROSS
 from ..results import TableResult
 from ..rft import li2013_alpha_material
 from .registry import StudyOutput, _Params, register_study
@@ -187,7 +188,7 @@ def mpm_wheel_versus_rft(
             "radius_m": radius,
             "width_m": width,
             "omega_rad_s": omega,
-            "cell_size_m": cell_size if cell_size is not None else 2 * radius / 16,
+            "cell_size_m": cell_size if cell_size is not None else 2 * radius / WHEEL_CELLS_ACROSS,
         },
     )
 
