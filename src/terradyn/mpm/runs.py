@@ -540,11 +540,16 @@ def _nominal_radius(wheel: Body) -> float:
     return float(r) if r is not None else float(wheel.bounding_radius)
 
 
+def _wheel_margin(reach: float, cell_size: float) -> float:
+    """Grains [m] a wheel bed keeps beyond the wheel's reach on either side of its path."""
+    return max(2.0 * reach, 4.0 * cell_size)
+
+
 def _wheel_bed(seg, c: _Common, travel, v_forward):
     """Bed for a wheel run and its start pose (lowest point half a cell above the surface)."""
     h = c.cell_size
     reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
-    margin = max(2.0 * reach, 4 * h)
+    margin = _wheel_margin(reach, h)
     bed_depth, bed_length = c.bed.depth, c.bed.width
     bed_depth = 2.0 * reach + margin if bed_depth is None else bed_depth
     bed_length = travel + 2.0 * (reach + margin) if bed_length is None else bed_length
@@ -570,7 +575,7 @@ def _wheel_window(c: _Common, reach: float) -> float:
     h = c.cell_size
     smallest = 2.0 * reach + 8.0 * h
     if c.bed.window is None:
-        return 2.0 * (reach + max(2.0 * reach, 4.0 * h))
+        return 2.0 * (reach + _wheel_margin(reach, h))
     if 0.0 < c.bed.window < smallest:
         raise InputError(
             "window",
