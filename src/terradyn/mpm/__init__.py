@@ -3,7 +3,8 @@
 The Dunatunga-Kamrin (2015) granular model (hypoelastic Jaumann trial stress, Drucker-Prager cone with
 optional mu(I) rate dependence, stress-free below the critical density) on an explicit MPM grid
 (APIC transfer, quadratic B-splines) with rigid bodies in frictional contact. Entry points:
-:func:`run_intrusion` and :func:`run_wheel`, and :class:`MPMTerrain`, the stateful terrain model
+:func:`run_intrusion`, :func:`run_wheel` and :func:`run_drag` (a buried body dragged
+horizontally), and :class:`MPMTerrain`, the stateful terrain model
 (``init``/``step``) for driving a body from your own code; :class:`GranularModel` maps a material
 (mu = sin(phi)). Their settings come as frozen specs shared by every case (:mod:`terradyn.mpm.specs`):
 :class:`Bed`, :class:`Resolution`, :class:`Outputs`, and the run length, :class:`Stroke` (intrusions)
@@ -33,6 +34,7 @@ __all__ = [
     "Bed",
     "BedGrid",
     "BedPacking",
+    "DragResult",
     "Drive",
     "GranularModel",
     "IntrusionResult",
@@ -48,6 +50,7 @@ __all__ = [
     "bed_stability_ratio",
     "friction_coefficient_from_angle",
     "read_snapshot",
+    "run_drag",
     "run_intrusion",
     "run_wheel",
 ]
@@ -72,6 +75,8 @@ _WHERE = {
     "WheelResult": "runs",
     "run_intrusion": "runs",
     "run_wheel": "runs",
+    "DragResult": "drag",
+    "run_drag": "drag",
     "read_snapshot": "checkpoint",
 }
 

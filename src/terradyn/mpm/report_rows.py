@@ -500,3 +500,7 @@ register_row("ch9-plate-packing", "mpm", "terradyn.mpm.report_rows:plate_packing
 register_row("ch9-wedges", "mpm", "terradyn.mpm.report_rows:wedges")
 register_row("fig-9-1", "mpm", "terradyn.mpm.report_rows:footing")
 register_row("fig-6-8", "mpm", "terradyn.mpm.report_rows:wheel_force_slip")
+
+# the chapter 9 rows of the drag runs and of superposition live in their own module; importing it
+# registers them
+from . import report_rows_ch9 as _report_rows_ch9  # noqa: E402, F401
