@@ -81,3 +81,33 @@ def test_bad_input_names_the_field(kwargs, field):
         run_drag(CYLINDER, materials.get("MS"), **args)
     assert err.value.field == field
     assert "\n" not in str(err.value)
+
+
+# --- CLI ------------------------------------------------------------------------------------------
+
+DRAG_ARGS = ["mpm", "drag", "plate", "--length", "0.03", "--depth", "0.02", "--distance", "0.01"]
+
+
+@pytest.mark.parametrize(
+    ("flag", "value"), [("--speed", "0"), ("--speed", "nan"), ("--distance", "-1"), ("--window", "0.001")]
+)
+def test_cli_bad_input_is_one_line(run_cli, flag, value):
+    args = [a for a in DRAG_ARGS if a != "--distance" and a != "0.01"] if flag == "--distance" else DRAG_ARGS
+    code, _, err = run_cli(*args, flag, value)
+    assert code == 1, err
+    assert flag in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.slow
+def test_cli_drag_runs_and_reports_drag_and_lift(run_cli, tmp_path):
+    import json
+
+    out = tmp_path / "drag.json"
+    code, _, err = run_cli(
+        *DRAG_ARGS, "--cell-size", "0.005", "--speed", "0.1", "--format", "json", "--out", str(out)
+    )
+    assert code == 0, err
+    summary = json.loads(out.read_text())
+    assert summary["drag_N"] > 0 and math.isfinite(summary["lift_N"])
+    assert summary["force_x_N"] == pytest.approx(-summary["drag_N"])

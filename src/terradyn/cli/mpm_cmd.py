@@ -1,4 +1,4 @@
-"""``terradyn mpm``: plane-strain MPM runs (intrusion and wheels)."""
+"""``terradyn mpm``: plane-strain MPM runs (intrusion, drag and wheels)."""
 
 from __future__ import annotations
 
@@ -314,6 +314,86 @@ def _interval(flag: str, interval: float | None, duration: float | None = None) 
     if not 0 < interval <= top:
         raise InputError(flag, interval, f"a time in (0, {top:g}] [s]")
     return interval
+
+
+@app.command("drag")
+@with_flags("sizes", BODY_SIZE_FLAGS)
+def drag(
+    body: BodyKind = typer.Argument(..., help="Body shape."),
+    depth: float = typer.Option(..., "--depth", help="Depth [m] of the body's reference point."),
+    distance: float = typer.Option(..., "--distance", help="Horizontal travel [m]."),
+    speed: float = typer.Option(
+        0.05, "--speed", help="Horizontal velocity [m/s]: + drags along +x, - along -x."
+    ),
+    angle: float = ANGLE,
+    averaging_window: float | None = typer.Option(
+        None, "--averaging-window", help="Travel [m] at the end averaged in the summary (default: half)."
+    ),
+    window: float | None = typer.Option(
+        None,
+        "--window",
+        help="Length [m] of the moving window of grains stepped around the body; 0 = the whole bed "
+        "(default: the body and its clearance ahead on either side).",
+    ),
+    material: str = MATERIAL,
+    width: float = BodyOptions.width,
+    sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
+    cell_size: float | None = MPMOptions.cell_size,
+    particles_per_cell: int = MPMOptions.ppc,
+    packing: str = MPMOptions.packing,
+    walls: str | None = MPMOptions.walls,
+    contact: str = MPMOptions.contact,
+    dilatancy: float = MPMOptions.dilatancy,
+    surface_friction: float | None = MPMOptions.surface_friction,
+    checkpoint: str | None = MPMOptions.checkpoint,
+    checkpoint_interval: float = MPMOptions.checkpoint_interval,
+    resume: bool = MPMOptions.resume,
+    record_interval: float | None = MPMOptions.record_interval,
+    snapshot_interval: float | None = MPMOptions.snapshot_interval,
+    snapshots: str | None = MPMOptions.snapshots,
+    series: str | None = MPMOptions.series,
+    fields: str | None = MPMOptions.fields,
+    animate: str | None = ANIMATE,
+    frames: int = MPMOptions.frames,
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+) -> None:
+    """Drag BODY, buried at --depth, horizontally through a settled bed with MPM; drag and lift.
+
+    Grains inside the body are removed before the bed settles around it (terradyn.mpm.run_drag)."""
+    from ..mpm.drag import run_drag
+    from ..mpm.specs import Stroke
+
+    shape = build_body(body, width, **sizes)
+    outs = _Outputs(out=out, plot=None, series=series, fields=fields, animate=animate, frames=frames,
+                    snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip
+    intervals = {
+        "record_interval": _interval("--record-interval", record_interval),
+        "snapshot_interval": _interval("--snapshot-interval", snapshot_interval),
+    }
+    with _interruptible(outs), fraction_progress("MPM drag", "s") as bar:
+        res = run_drag(
+            shape,
+            materials.get(material),
+            depth=depth,
+            distance=distance,
+            speed=check_finite("--speed", speed),
+            angle=math.radians(check_finite("--angle", angle)),
+            bed=Bed(packing=packing, walls=walls, window=window),
+            resolution=Resolution(
+                cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact
+            ),
+            outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
+            stroke=Stroke(averaging_window=averaging_window),
+            dilatancy=_dilatancy(dilatancy),
+            surface_friction=None
+            if surface_friction is None
+            else check_finite("--surface-friction", surface_friction),
+        )
+    _write_series(res, outs.series)
+    _field_outputs(res, outs.fields, outs.animate)
+    keys = ("drag_N", "lift_N", "drag_std_N", "force_x_N", "force_z_N", "torque_y_Nm")
+    emit({k: res.summary[k] for k in keys}, fmt, outs.out)
 
 
 def _mpm_wheel(shape: str, width: float, sizes: dict[str, Any]) -> Any:
