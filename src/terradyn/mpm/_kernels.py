@@ -58,6 +58,7 @@ __all__ = [
     "make_scratch",
     "p2g",
     "p2g_sides",
+    "patch_divergence",
     "polygon_sdf",
 ]
 
@@ -176,6 +177,7 @@ def g2p(
     critical_density,
     dilatancy=0.0,
     loose_density=0.0,
+    div_bar=None,
 ):
     """Grid -> particle: velocities, affine matrices, positions, volumes and stresses (in place).
 
@@ -185,11 +187,19 @@ def g2p(
     (x_min, x_max, z_min, z_max) [m] clamps positions inside the walls; ``gdot`` (N,) receives the
     plastic shear rate [1/s]. Material parameters as in :func:`~terradyn.mpm.constitutive.dk_stress_update`;
     ``dilatancy`` K [-] > 0 selects :func:`~terradyn.mpm.constitutive.dk_dilatant_stress_update` with
-    ``loose_density`` [kg/m^3] (the density of a point is its mass over its volume).
+    ``loose_density`` [kg/m^3] (the density of a point is its mass over its volume). A ``div_bar``
+    (N,) [1/s] replaces each point's velocity divergence by the patch average of
+    :func:`patch_divergence` (the isotropic part of its velocity gradient is shifted, its deviatoric
+    part kept), in the volume and the stress update alike.
     """
     n = pos.shape[0]
     inv_h = 1.0 / h
     dscale = 4.0 * inv_h * inv_h
+    if div_bar is None:
+        bar = np.empty(0)
+    else:
+        bar = div_bar
+    averaged = bar.shape[0] == n and n > 0
     for p in prange(n):
         wx = np.empty(3)
         wz = np.empty(3)
@@ -243,6 +253,10 @@ def g2p(
         aff[p, 1, 1] = dscale * b11
         pos[p, 0] = min(bounds[1], max(bounds[0], pos[p, 0] + dt * vx))
         pos[p, 1] = min(bounds[3], max(bounds[2], pos[p, 1] + dt * vz))
+        if averaged:
+            shift = 0.5 * (bar[p] - (lxx + lzz))
+            lxx += shift
+            lzz += shift
         v = vol[p] * math.exp(dt * (lxx + lzz))
         vol[p] = v
         if dilatancy > 0.0:
@@ -277,6 +291,55 @@ def g2p(
         stress[p, 2] = out[2]
         stress[p, 3] = out[3]
         gdot[p] = out[4]
+
+
+@njit(cache=True, fastmath=True, parallel=True)
+def patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, div_bar):
+    """Patch-averaged velocity divergence of every particle into ``div_bar`` (N,) [1/s].
+
+    A patch is the node-centred cell of the particle's nearest grid node; near a body (``geo[p]`` has
+    a normal) the particles of a patch are further split by the side of the body their normal points
+    to, so the two grain fields of a thin body are not mixed. Within a patch the divergence
+    ``tr L_p`` (read from the grid as in :func:`g2p`) is averaged with the particle volumes as
+    weights. This is the B-bar idea for material points (Coombs et al. 2018, Comput. Methods Appl.
+    Mech. Engrg. 333, 1-21, doi:10.1016/j.cma.2018.01.010): one volumetric rate per patch instead of
+    one per point, which frees isochoric plastic flow from volumetric locking. ``patch`` (nx, nz, 3,
+    2) is scratch.
+    """
+    n = pos.shape[0]
+    inv_h = 1.0 / h
+    patch[:] = 0.0
+    keys = np.empty((n, 3), dtype=np.int64)
+    for p in prange(n):
+        wx = np.empty(3)
+        wz = np.empty(3)
+        dwx = np.empty(3)
+        dwz = np.empty(3)
+        bi, _ = _weights((pos[p, 0] - x0) * inv_h, wx, dwx, inv_h)
+        bj, _ = _weights((pos[p, 1] - z0) * inv_h, wz, dwz, inv_h)
+        npx = geo[p, 0]
+        npz = geo[p, 1]
+        near = npx != 0.0 or npz != 0.0
+        div = 0.0
+        for a in range(3):
+            for b in range(3):
+                i = bi + a
+                j = bj + b
+                if near and _far_side(npx, npz, node, i, j):
+                    div += grid_vel_m[i, j, 0] * dwx[a] * wz[b] + grid_vel_m[i, j, 1] * wx[a] * dwz[b]
+                else:
+                    div += grid_vel[i, j, 0] * dwx[a] * wz[b] + grid_vel[i, j, 1] * wx[a] * dwz[b]
+        div_bar[p] = div
+        keys[p, 0] = bi + 1  # the nearest node (the B-spline offset of node bi + 1 is below half a cell)
+        keys[p, 1] = bj + 1
+        keys[p, 2] = 0 if not near else (1 if npz > 0.0 or (npz == 0.0 and npx > 0.0) else 2)
+    for p in range(n):
+        cell = patch[keys[p, 0], keys[p, 1], keys[p, 2]]
+        cell[0] += vol[p] * div_bar[p]
+        cell[1] += vol[p]
+    for p in prange(n):
+        cell = patch[keys[p, 0], keys[p, 1], keys[p, 2]]
+        div_bar[p] = cell[0] / cell[1]
 
 
 #: Contact schemes of :func:`advance`: the grid nodes inside a (thickened) outline take the body
@@ -324,6 +387,7 @@ def advance(
     scratch_grid,
     scratch_particles,
     near,
+    averaged=False,
 ):
     """Run ``n_steps`` MPM steps of ``dt`` [s] with one rigid body, all compiled.
 
@@ -339,6 +403,7 @@ def advance(
     ``forces`` (n_steps, 3) receives the grain force and torque on the body each step [N/m, N m/m].
     Scratch: ``scratch_grid`` (nx, nz, 14) (far-side velocity, band-node geometry, two-field sums),
     ``scratch_particles`` (N, 3) and ``near`` (N,) int64 (see :func:`body_particles`).
+    ``averaged`` selects the patch-averaged velocity divergence (:func:`patch_divergence`).
     """
     g_mod = material[0]
     lam = material[1]
@@ -355,6 +420,9 @@ def advance(
     n_near = 0
     box = (0, -1, 0, -1)
     node[:, :, 2] = _FAR  # no band yet (and no stale two-field state for g2p)
+    n_patch = grid_mass.shape[0] if averaged else 0
+    patch = np.zeros((n_patch, grid_mass.shape[1] if averaged else 0, 3, 2))
+    div_bar = np.empty(pos.shape[0] if averaged else 0)
     if not sides:
         geo[:] = 0.0
     for step in range(n_steps):
@@ -391,6 +459,8 @@ def advance(
             pose[1] += dt * twist[1]
             pose[2] += dt * twist[2]
         # 3. grid -> particle, stress update; particles kept out of the body
+        if averaged:
+            patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, div_bar)
         g2p(
             pos,
             vel,
@@ -418,6 +488,7 @@ def advance(
             material[7],
             dilatancy,
             loose_density,
+            div_bar,
         )
         if has_body:
             if sides:

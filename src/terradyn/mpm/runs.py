@@ -187,6 +187,8 @@ def _run_inputs(c: _Common, body: Body, named: dict[str, Any]) -> dict[str, Any]
         "particles_per_cell": c.resolution.particles_per_cell,
         "walls": c.walls,
         "contact": c.contact.value,
+        # only when not the classical update, so checkpoints of earlier releases still resume
+        **({"volumetric": c.resolution.volumetric} if c.resolution.volumetric != "point" else {}),
     }
 
 
@@ -374,6 +376,7 @@ def _runner(c: _Common, grid, state, dt, phases, every, reference_speed, outputs
         snapshot_dir=outputs.snapshot_dir,
         snapshot_every=snapshot_every,
         progress=outputs.progress,
+        averaged_divergence=c.resolution.volumetric == "patch",
     )
     runner.frame_every = _frame_every(outputs.frame_count, phases[-1].n_steps, record_every)
     return runner

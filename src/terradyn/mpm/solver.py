@@ -310,6 +310,7 @@ class Runner:
     progress: ProgressCallback | None = None
     frame_every: int = 0
     window: float = 0.0
+    averaged_divergence: bool = False  # Resolution.volumetric == "patch"
     step: int = 0
     rows: list[list[float]] = field(default_factory=list)
     frames: list[dict[str, np.ndarray]] = field(default_factory=list)
@@ -612,6 +613,7 @@ class Runner:
             b.friction,
             forces,
             *self._scratch,
+            self.averaged_divergence,
         )
 
     def frame(self) -> dict[str, np.ndarray]:

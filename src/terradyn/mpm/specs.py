@@ -156,6 +156,10 @@ class Bed(_Spec):
         _optional_positive("window", self.window, allow_zero=True)
 
 
+#: the choices of :attr:`Resolution.volumetric`
+VOLUMETRIC = ("point", "patch")
+
+
 @dataclass(frozen=True, repr=False)
 class Resolution(_Spec):
     """How finely the grains and the grid resolve the case.
@@ -168,6 +172,10 @@ class Resolution(_Spec):
         (bodies need no thickness) or the legacy ``"cover"``.
     min_cells_across : the fewest cells accepted across the body's diameter (None: 6 for intrusions,
         8 for wheels).
+    volumetric : the velocity divergence each point's volume and stress take: ``"point"`` its own
+        (the classical update) or ``"patch"`` the volume-weighted mean over the points of its
+        nearest node's cell (B-bar, against volumetric locking of isochoric plastic flow; see
+        docs/mpm.md "Volumetric locking").
     """
 
     cell_size: float | None = None
@@ -175,6 +183,7 @@ class Resolution(_Spec):
     cfl: float = 0.3
     contact: ContactScheme | str = ContactScheme.TWO_FIELD
     min_cells_across: int | None = None
+    volumetric: str = "point"
 
     def __post_init__(self) -> None:
         _optional_positive("cell_size", self.cell_size)
@@ -186,6 +195,8 @@ class Resolution(_Spec):
         if self.min_cells_across is not None:
             n = _integer("min_cells_across", self.min_cells_across, 2, None, "an integer >= 2")
             _set(self, "min_cells_across", n)
+        if self.volumetric not in VOLUMETRIC:
+            raise InputError("volumetric", self.volumetric, "'point' or 'patch'")
 
 
 @dataclass(frozen=True, repr=False)

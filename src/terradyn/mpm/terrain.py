@@ -100,6 +100,7 @@ class MPMTerrain:
         self.packing = BedPacking(bed.packing)
         self.bed_density = bed.density
         self.particles_per_cell = resolution.particles_per_cell
+        self.volumetric = resolution.volumetric
         self.gravity = bed.gravity
         self.cfl = resolution.cfl
         self.max_speed = check_positive("max_speed", max_speed)
@@ -199,6 +200,7 @@ class MPMTerrain:
             gravity=self.gravity,
             has_body=False,
             reference_speed=self.max_speed,
+            averaged_divergence=self.volumetric == "patch",
         )
         return runner, eff, state
 
@@ -332,6 +334,7 @@ class MPMTerrain:
             "gravity": self.gravity,
             "cfl": self.cfl,
             "max_speed": self.max_speed,
+            **({"volumetric": self.volumetric} if self.volumetric != "point" else {}),
             "derived": {"mpm_body": eff, "dt": self.dt},
         }
 

@@ -1,0 +1,142 @@
+"""Patch-averaged velocity divergence (``Resolution(volumetric="patch")``, B-bar for material points)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from terradyn.errors import InputError
+from terradyn.mpm import _kernels as K
+from terradyn.mpm.model import GranularModel
+from terradyn.mpm.specs import Resolution
+
+H = 0.01
+X0, Z0 = -0.02, -0.03
+SHAPE = (14, 12)
+MODEL = GranularModel(
+    youngs_modulus=2e6,
+    poisson_ratio=0.33,
+    friction_coefficient=0.5,
+    friction_coefficient_2=0.7,
+    inertial_number_0=0.278,
+    grain_diameter=1e-3,
+    grain_density=2600.0,
+    critical_density=1500.0,
+    bulk_density=1560.0,
+    surface_friction=0.4,
+)
+
+
+def particles(seed: int, n: int = 300):
+    """Random points inside the grid, away from its edges: positions, velocities, affine matrices,
+    stresses, masses, volumes."""
+    rng = np.random.default_rng(seed)
+    pos = np.column_stack(
+        [rng.uniform(X0 + 2.5 * H, X0 + 10.5 * H, n), rng.uniform(Z0 + 2.5 * H, Z0 + 8.5 * H, n)]
+    )
+    stress = -np.abs(rng.normal(800, 300, (n, 4)))
+    stress[:, 2] = rng.normal(0, 200, n)
+    mass = rng.uniform(0.03, 0.05, n)
+    return pos, rng.normal(0, 0.1, (n, 2)), rng.normal(0, 1.0, (n, 2, 2)), stress, mass, mass / 1600.0
+
+
+def _no_body(n):
+    node = np.zeros((*SHAPE, 3))
+    node[..., 2] = 1e300
+    return np.zeros((n, 3)), node
+
+
+def _divergence(pos, vol, gv, geo=None, node=None):
+    g, nd = _no_body(len(pos))
+    geo = g if geo is None else geo
+    node = nd if node is None else node
+    out = np.empty(len(pos))
+    K.patch_divergence(pos, vol, geo, node, gv, np.zeros_like(gv), X0, Z0, H, np.zeros((*SHAPE, 3, 2)), out)
+    return out
+
+
+def _point_divergence(pos, gv):
+    """tr L_p of every point, independently (quadratic B-splines)."""
+    out = np.empty(len(pos))
+    for p, (x, z) in enumerate(pos):
+        wx, dwx, bi = _spline((x - X0) / H)
+        wz, dwz, bj = _spline((z - Z0) / H)
+        out[p] = sum(
+            gv[bi + a, bj + b, 0] * dwx[a] * wz[b] + gv[bi + a, bj + b, 1] * wx[a] * dwz[b]
+            for a in range(3)
+            for b in range(3)
+        )
+    return out
+
+
+def _spline(xi):
+    base = int(xi - 0.5)
+    f = xi - base
+    w = np.array([0.5 * (1.5 - f) ** 2, 0.75 - (f - 1.0) ** 2, 0.5 * (f - 0.5) ** 2])
+    dw = np.array([-(1.5 - f), -2.0 * (f - 1.0), f - 0.5]) / H
+    return w, dw, base
+
+
+def test_an_affine_field_has_the_same_divergence_everywhere():
+    pos, *_, vol = particles(0)
+    i, j = np.meshgrid(np.arange(SHAPE[0]), np.arange(SHAPE[1]), indexing="ij")
+    x, z = X0 + i * H, Z0 + j * H
+    a = np.array([[0.3, -0.2], [0.5, 0.7]])  # v = A x + c: divergence tr A = 1.0 / s
+    gv = np.stack([a[0, 0] * x + a[0, 1] * z + 0.01, a[1, 0] * x + a[1, 1] * z - 0.02], axis=-1)
+    np.testing.assert_allclose(_divergence(pos, vol, gv), 1.0, rtol=1e-10)
+
+
+def test_patch_average_keeps_each_patch_total_and_removes_the_spread_within_it():
+    pos, *_, vol = particles(1, n=600)
+    gv = np.random.default_rng(3).normal(0, 0.05, (*SHAPE, 2))
+    point = _point_divergence(pos, gv)
+    bar = _divergence(pos, vol, gv)
+    keys = np.floor((pos - [X0, Z0]) / H + 0.5).astype(int)  # nearest node
+    patches = {tuple(k) for k in keys}
+    assert len(patches) > 20
+    for key in patches:
+        inside = np.all(keys == key, axis=1)
+        total = np.sum(vol[inside] * point[inside])
+        assert np.sum(vol[inside] * bar[inside]) == pytest.approx(total, rel=1e-10, abs=1e-14)
+        assert np.ptp(bar[inside]) <= 1e-12 * max(1.0, np.abs(bar[inside]).max())
+    assert np.ptp(point) > 1.0  # the field is far from uniform, so the averaging did something
+
+
+def test_the_two_sides_of_a_thin_body_are_not_averaged_together():
+    # two points in one patch, one above and one below a body surface (opposite normals)
+    pos = np.array([[X0 + 5.0 * H, Z0 + 5.2 * H], [X0 + 5.0 * H, Z0 + 4.8 * H]])
+    vol = np.ones(2) * 1e-5
+    gv = np.random.default_rng(5).normal(0, 0.05, (*SHAPE, 2))
+    geo = np.array([[0.0, 1.0, 0.001], [0.0, -1.0, 0.001]])
+    _, node = _no_body(2)
+    bar = _divergence(pos, vol, gv, geo=geo, node=node)
+    np.testing.assert_allclose(bar, _point_divergence(pos, gv), rtol=1e-10)
+    geo_same = np.array([[0.0, 1.0, 0.001], [0.0, 1.0, 0.001]])
+    bar_same = _divergence(pos, vol, gv, geo=geo_same, node=node)
+    assert bar_same[0] == pytest.approx(bar_same[1], rel=1e-12)
+
+
+def test_g2p_with_the_patch_divergence_changes_only_the_isotropic_rate():
+    pos, vel, aff, stress, mass, vol = particles(4)
+    gv = np.random.default_rng(9).normal(0, 0.05, (*SHAPE, 2))
+    bounds = np.array([X0 + 2 * H, X0 + 11 * H, Z0 + 2 * H, Z0 + 9 * H])
+    mat = MODEL.as_kernel_array()
+    geo, node = _no_body(len(pos))
+    runs = []
+    for averaged in (False, True):
+        state = [a.copy() for a in (pos, vel, aff, stress, mass, vol)]
+        gdot = np.zeros(len(pos))
+        bar = _divergence(state[0], state[5], gv) if averaged else np.empty(0)
+        grid = (gv, np.zeros_like(gv), geo, node, X0, Z0, H, 1e-4, bounds)
+        K.g2p(*state[:6], gdot, *grid, *mat, 0.0, 0.0, bar)
+        runs.append((state, bar))
+    (plain, _), (patch, bar) = runs
+    for k in (0, 1, 2):  # positions, velocities, affine matrices do not depend on it
+        np.testing.assert_array_equal(plain[k], patch[k])
+    np.testing.assert_allclose(patch[5], vol * np.exp(1e-4 * bar), rtol=1e-12)
+    assert not np.allclose(plain[5], patch[5], rtol=1e-9)
+
+
+def test_bad_volumetric_choice_names_the_field():
+    with pytest.raises(InputError, match="volumetric"):
+        Resolution(volumetric="cell")
