@@ -43,6 +43,12 @@ class MPMOptions:
         None, "--cell-size", help="Grid cell size [m] (default: diameter / 16, wheels / 32)."
     )
     ppc = typer.Option(2, "--particles-per-cell", help="Particles per cell along each axis.")
+    volumetric = typer.Option(
+        "point",
+        "--volumetric",
+        help="Velocity divergence of the volume and stress update: point (each point its own) or patch "
+        "(averaged over the points of a cell, against volumetric locking; docs/mpm.md).",
+    )
     packing = typer.Option("consolidated", "--packing", help="consolidated or unconsolidated bed.")
     walls = typer.Option(None, "--walls", help="Wall condition: free-slip, no-slip or frictional.")
     contact = typer.Option(
@@ -244,6 +250,7 @@ def intrude(
     sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
     cell_size: float | None = MPMOptions.cell_size,
     particles_per_cell: int = MPMOptions.ppc,
+    volumetric: str = MPMOptions.volumetric,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
@@ -273,7 +280,9 @@ def intrude(
     if not speed > 0:
         raise InputError("--speed", speed, "a speed > 0 [m/s]")
     bed = Bed(packing=packing, walls=walls)
-    resolution = Resolution(cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact)
+    resolution = Resolution(
+        cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact, volumetric=volumetric
+    )
     intervals = {
         "record_interval": _interval("--record-interval", record_interval),
         "snapshot_interval": _interval("--snapshot-interval", snapshot_interval),
@@ -340,6 +349,7 @@ def drag(
     sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
     cell_size: float | None = MPMOptions.cell_size,
     particles_per_cell: int = MPMOptions.ppc,
+    volumetric: str = MPMOptions.volumetric,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
@@ -381,7 +391,10 @@ def drag(
             angle=math.radians(check_finite("--angle", angle)),
             bed=Bed(packing=packing, walls=walls, window=window),
             resolution=Resolution(
-                cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact
+                cell_size=cell_size,
+                particles_per_cell=particles_per_cell,
+                contact=contact,
+                volumetric=volumetric,
             ),
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             stroke=Stroke(averaging_window=averaging_window),
@@ -439,6 +452,7 @@ def wheel(
     sizes: dict[str, Any] = {},  # the wheel size flags (MPM_WHEEL_SIZE_FLAGS)  # noqa: B006
     cell_size: float | None = MPMOptions.cell_size,
     particles_per_cell: int = MPMOptions.ppc,
+    volumetric: str = MPMOptions.volumetric,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
@@ -487,7 +501,10 @@ def wheel(
             drawbar_load=drawbar_load,
             bed=Bed(packing=packing, walls=walls, window=window),
             resolution=Resolution(
-                cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact
+                cell_size=cell_size,
+                particles_per_cell=particles_per_cell,
+                contact=contact,
+                volumetric=volumetric,
             ),
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             drive=Drive(duration=duration),
@@ -572,6 +589,7 @@ def converge_intrude(
     width: float = BodyOptions.width,
     sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
     particles_per_cell: int = MPMOptions.ppc,
+    volumetric: str = MPMOptions.volumetric,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     fmt: OutputFormat = FORMAT,
@@ -597,7 +615,7 @@ def converge_intrude(
             angle=math.radians(check_finite("--angle", angle)),
             speed=speed,
             bed=Bed(packing=packing, walls=walls),
-            resolution=Resolution(particles_per_cell=particles_per_cell),
+            resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric),
         )
     _emit_convergence(res, fmt, out_path, plot_path, f"MPM {body.value} intrusion")
 
@@ -615,6 +633,7 @@ def converge_wheel_cmd(
     shape: str = typer.Option("circular", "--shape", help="Wheel shape: circular, grousered or flapped."),
     sizes: dict[str, Any] = {},  # the wheel size flags (MPM_WHEEL_SIZE_FLAGS)  # noqa: B006
     particles_per_cell: int = MPMOptions.ppc,
+    volumetric: str = MPMOptions.volumetric,
     packing: str = MPMOptions.packing,
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
@@ -636,7 +655,7 @@ def converge_wheel_cmd(
             omega=omega,
             slip=slip,
             bed=Bed(packing=packing),
-            resolution=Resolution(particles_per_cell=particles_per_cell),
+            resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric),
             drive=Drive(duration=duration),
         )
     _emit_convergence(res, fmt, out_path, plot_path, "MPM wheel")
@@ -660,6 +679,8 @@ def verify_strip_footing(
     settlement_ratio: float = typer.Option(
         0.1, "--settlement-ratio", help="Settlement s/B [-] about which the collapse pressure is read."
     ),
+    particles_per_cell: int = MPMOptions.ppc,
+    volumetric: str = MPMOptions.volumetric,
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = typer.Option(
@@ -685,6 +706,7 @@ def verify_strip_footing(
         res = strip_footing(
             phi, base, material=material, width=width, cell_size=cell_size,
             settlement_ratio=settlement_ratio, progress=bar,
+            resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric),
         )  # fmt: skip
     if plot_path is not None:
         from ..plotting.studies import plot_footing

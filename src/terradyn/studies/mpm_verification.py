@@ -61,7 +61,8 @@ class StripFootingResult:
     at the reading settlement ``settlement_m`` (pressure ``pressure_Pa``), ``embedment_slope`` the
     fitted dq/ds over gamma [-] and ``N_q_reduced`` N_q(phi*) to compare it with, ``unit_weight_N_m3`` gamma,
     ``reference`` (dict from :func:`terradyn.plasticity.strip_footing_reference`, or empty when that
-    package has no value), ``curve`` (settlement [m], pressure [Pa]) of the whole run."""
+    package has no value), ``curve`` (settlement [m], pressure [Pa]) of the whole run; ``particles_per_cell``
+    and ``volumetric`` the discretisation (:class:`terradyn.mpm.specs.Resolution`)."""
 
     friction_angle_deg: float
     base: FootingBase
@@ -78,6 +79,8 @@ class StripFootingResult:
     curve: tuple[np.ndarray, np.ndarray]
     final_particles: dict[str, np.ndarray] | None = None
     final_segments: np.ndarray | None = None
+    particles_per_cell: int = 2
+    volumetric: str = "point"
 
     def record(self) -> dict[str, Any]:
         rec: dict[str, Any] = {
@@ -89,6 +92,8 @@ class StripFootingResult:
             "base": self.base.value,
             "width_m": self.width_m,
             "cell_size_m": self.cell_size_m,
+            "particles_per_cell": self.particles_per_cell,
+            "volumetric": self.volumetric,
             "pressure_Pa": self.pressure_Pa,
             "settlement_m": self.settlement_m,
             "embedment_slope": self.embedment_slope,
@@ -232,4 +237,6 @@ def strip_footing(
         curve=(s[touching], q[touching]),
         final_particles=getattr(res, "final_particles", None),
         final_segments=None if getattr(res, "final_frame", None) is None else res.final_frame["segments"],
+        particles_per_cell=resolution.particles_per_cell,
+        volumetric=resolution.volumetric,
     )
