@@ -140,3 +140,46 @@ def test_g2p_with_the_patch_divergence_changes_only_the_isotropic_rate():
 def test_bad_volumetric_choice_names_the_field():
     with pytest.raises(InputError, match="volumetric"):
         Resolution(volumetric="cell")
+
+
+def _plate_run(**kw):
+    from terradyn.geometry import Plate
+    from terradyn.mpm import Bed, Stroke, run_intrusion
+
+    return run_intrusion(
+        Plate(0.08, 0.1),
+        MODEL,
+        depth=0.02,
+        speed=0.2,
+        bed=Bed(width=0.2, depth=0.12, settle_time=0.02),
+        stroke=Stroke(averaging_window=0.01),
+        **kw,
+    )
+
+
+def test_a_patch_run_resumes_bit_for_bit_and_a_point_resume_of_it_is_refused(tmp_path):
+    from terradyn.mpm import Outputs
+    from terradyn.mpm.solver import RunInterrupted
+
+    patch = Resolution(cell_size=0.01, volumetric="patch")
+    whole = _plate_run(resolution=patch)
+    point = _plate_run(resolution=patch.replace(volumetric="point"))
+    f_patch, f_point = whole.summary["force_z_N"], point.summary["force_z_N"]
+    assert np.isfinite(f_patch) and f_patch > 0
+    assert f_patch != pytest.approx(f_point, rel=1e-6)  # the option reaches the kernels
+    ckpt = tmp_path / "run.npz"
+    calls = []
+
+    def stop(t, frac):
+        calls.append(t)
+        if len(calls) == 10:
+            raise KeyboardInterrupt
+
+    with pytest.raises(RunInterrupted):
+        _plate_run(resolution=patch, outputs=Outputs(checkpoint_path=ckpt, progress=stop))
+    with pytest.raises(InputError, match="volumetric"):
+        _plate_run(
+            resolution=patch.replace(volumetric="point"), outputs=Outputs(checkpoint_path=ckpt, resume=True)
+        )
+    resumed = _plate_run(resolution=patch, outputs=Outputs(checkpoint_path=ckpt, resume=True))
+    np.testing.assert_array_equal(resumed.to_dataframe().to_numpy(), whole.to_dataframe().to_numpy())
