@@ -539,7 +539,7 @@ def cylinder_fields(quick: bool) -> ItemOutput:
     _, summary, fields, segments = _drag(body, depth, s)
     x_end = float(np.mean(segments[:, :, 0]))
     r = 0.5 * _SIZE
-    window = (x_end - 5 * r, x_end + 5 * r, -depth - 4 * r, r)
+    window = (x_end - 8 * r, x_end + 8 * r, -depth - 3 * r, r)
     fig = plot_fields(
         fields,
         segments=segments,
