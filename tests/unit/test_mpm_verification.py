@@ -13,9 +13,10 @@ from terradyn.errors import InputError
 from terradyn.studies.mpm_verification import strip_footing
 
 
-def _fake(n_gamma, slope, width=0.04, out_of_plane=0.01):
+def _fake(n_gamma, slope, width=0.04, out_of_plane=0.01, noise=0.0, seed=0):
     gamma = materials.get("MS").bulk_density * 9.81
     calls = {}
+    rng = np.random.default_rng(seed)
 
     def run(body, material, *, depth, **kw):
         calls.update(kw, depth=depth, length=body.length)
@@ -23,6 +24,7 @@ def _fake(n_gamma, slope, width=0.04, out_of_plane=0.01):
         q_u = 0.5 * gamma * width * n_gamma
         # elastic rise to the collapse pressure over 2 % of B, then the embedment line
         q = np.where(s < 0.02 * width, q_u * np.clip(s, 0, None) / (0.02 * width), q_u + gamma * slope * s)
+        q = q + noise * q_u * rng.standard_normal(len(s))  # relative white noise on the pressure
         import pandas as pd
 
         return SimpleNamespace(
@@ -64,3 +66,17 @@ def test_settlement_must_span_cells_and_inputs_are_checked():
         strip_footing(30.0, "sticky", run=run)
     with pytest.raises(InputError, match="friction_angle_deg"):
         strip_footing(60.0, "rough", run=run)
+
+
+def test_the_intercept_standard_error_matches_the_scatter_of_repeated_noisy_runs():
+    """White noise of 10 % of q_u: the reported standard error of N_gamma agrees with the spread of
+    the intercepts over 40 noisy repeats (within the sampling error of a 40-sample spread)."""
+    exact = strip_footing(30.0, "rough", run=_fake(11.0, 15.0)[0])
+    assert exact.N_gamma_stderr == pytest.approx(0.0, abs=1e-9)
+    runs = [strip_footing(30.0, "rough", run=_fake(11.0, 15.0, noise=0.1, seed=k)[0]) for k in range(40)]
+    spread = np.std([r.N_gamma_mpm for r in runs], ddof=1)
+    reported = np.mean([r.N_gamma_stderr for r in runs])
+    assert spread > 0.05  # the noise moves the intercept
+    assert reported == pytest.approx(spread, rel=0.35)
+    assert abs(np.mean([r.N_gamma_mpm for r in runs]) - 11.0) < 3 * spread / math.sqrt(40)
+    assert "N_gamma_mpm_stderr" in runs[0].record()

@@ -57,7 +57,9 @@ ROUGH_FRICTION = 2.0
 class StripFootingResult:
     """One MPM strip-footing run and its bearing factor.
 
-    ``N_gamma_mpm`` [-] = 2 q_u / (gamma B) from the intercept q_u, ``N_gamma_raw`` = 2 q / (gamma B)
+    ``N_gamma_mpm`` [-] = 2 q_u / (gamma B) from the intercept q_u, with ``N_gamma_stderr`` its standard
+    error (least squares, the residuals' lag-1 autocorrelation shrinking the sample to its effective
+    size: the pressure rings as the base crosses cells), ``N_gamma_raw`` = 2 q / (gamma B)
     at the reading settlement ``settlement_m`` (pressure ``pressure_Pa``), ``embedment_slope`` the
     fitted dq/ds over gamma [-] and ``N_q_reduced`` N_q(phi*) to compare it with, ``unit_weight_N_m3`` gamma,
     ``reference`` (dict from :func:`terradyn.plasticity.strip_footing_reference`, or empty when that
@@ -70,6 +72,7 @@ class StripFootingResult:
     cell_size_m: float
     N_gamma_mpm: float
     N_gamma_raw: float
+    N_gamma_stderr: float
     pressure_Pa: float
     settlement_m: float
     embedment_slope: float
@@ -87,6 +90,7 @@ class StripFootingResult:
             "N_gamma_mpm": self.N_gamma_mpm,
             "N_gamma_reference": self.reference.get("N_gamma_reference"),
             "reference": self.reference.get("reference", ""),
+            "N_gamma_mpm_stderr": self.N_gamma_stderr,
             "N_gamma_raw": self.N_gamma_raw,
             "friction_angle_deg": self.friction_angle_deg,
             "base": self.base.value,
@@ -132,6 +136,21 @@ def _nq_reduced(phi: float) -> float:
     from ..plasticity import davis1968_reduced_friction_angle, reissner1924_nq
 
     return float(reissner1924_nq(davis1968_reduced_friction_angle(phi)))
+
+
+def _intercept_stderr(s: np.ndarray, q: np.ndarray, slope: float, intercept: float) -> float:
+    """Standard error of a least-squares line's intercept with serially correlated residuals: the
+    ordinary formula with the sample shrunk to n (1 - r) / (1 + r), r the residuals' lag-1
+    autocorrelation (clipped to [0, 0.95])."""
+    n = len(s)
+    res = q - (intercept + slope * s)
+    rho = 0.0
+    if n > 3 and np.std(res[:-1]) > 0 and np.std(res[1:]) > 0:
+        rho = float(np.clip(np.corrcoef(res[:-1], res[1:])[0, 1], 0.0, 0.95))
+    sxx = float(np.sum((s - s.mean()) ** 2))
+    sigma2 = float(np.sum(res**2)) / max(1, n - 2)
+    var = sigma2 * (1.0 / n + s.mean() ** 2 / sxx) * (1.0 + rho) / (1.0 - rho)
+    return math.sqrt(var)
 
 
 def strip_footing(
@@ -216,6 +235,7 @@ def strip_footing(
     if np.count_nonzero(fit) < 4:
         raise SolverError(f"too few records between {0.5 * settlement:.4g} and {1.5 * settlement:.4g} m")
     slope, intercept = np.polyfit(s[fit], q[fit], 1)
+    q_stderr = _intercept_stderr(s[fit], q[fit], float(slope), float(intercept))
     near = np.abs(s - settlement) <= 0.1 * settlement
     q_read = float(q[near].mean()) if np.any(near) else float(intercept + slope * settlement)
     gamma = (mat.bulk_density if bed.density is None else bed.density) * bed.gravity
@@ -228,6 +248,7 @@ def strip_footing(
         cell_size_m=h,
         N_gamma_mpm=n_corr,
         N_gamma_raw=n_raw,
+        N_gamma_stderr=2.0 * q_stderr / (gamma * b),
         pressure_Pa=q_read,
         settlement_m=settlement,
         embedment_slope=float(slope) / gamma,
