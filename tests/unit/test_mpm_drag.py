@@ -37,6 +37,16 @@ def test_drag_grows_with_depth():
     assert deep["drag_N"] > 1.2 * shallow["drag_N"] > 0
 
 
+def test_travel_runs_from_the_start_and_the_summary_averages_its_end():
+    series, summary, _, _ = _drag(CYLINDER, _SIZE, _LD_QUICK, -1.0)
+    d = series["distance_m"]
+    assert d[0] < 0.1 * _LD_QUICK.distance and np.all(np.diff(d) >= 0)
+    assert d[-1] == pytest.approx(_LD_QUICK.distance, rel=0.02)
+    end = d >= _LD_QUICK.distance - summary["averaging_window_m"] - 1e-12
+    assert 0 < end.sum() < len(d)
+    assert summary["drag_N"] == pytest.approx(series["drag_N"][end].mean())
+
+
 def test_grains_inside_a_closed_body_only_are_removed():
     model = resolve_model(materials.get("MS"))
     grid = BedGrid(0.1, 0.06, 0.02, 0.004, -0.05)

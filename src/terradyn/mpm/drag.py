@@ -211,7 +211,8 @@ def run_drag(
         ),
     ]
     every = _output_every(outputs, dt, abs(speed), 0.25 * h, 4 * h)
-    state = _body_state(c, seg, pose0, np.zeros(2, dtype=np.bool_), 1.0, np.zeros(2), body.width)
+    # the kernels move the body's pose in place: keep pose0 as the start
+    state = _body_state(c, seg, pose0.copy(), np.zeros(2, dtype=np.bool_), 1.0, np.zeros(2), body.width)
     named = dict(
         run="drag",
         depth=depth,
