@@ -79,3 +79,19 @@ def test_changes_that_grow_on_refinement_get_no_extrapolation():
     # the same sizes with a converging power law still extrapolate
     est = richardson(sizes, [100.0 + 50.0 * h**0.5 for h in sizes])
     assert est.order == pytest.approx(0.5, rel=1e-6)
+
+
+def test_an_order_above_the_formal_order_is_capped_in_the_band():
+    """The plate sequence of docs/mpm.md (patch divergence): observed order 6.8 is not believed; the
+    band uses order 2 and so is wider than the raw GCI."""
+    sizes, values = (0.01, 0.0075, 0.005, 0.00375), (215.72, 200.79, 162.74, 160.52)
+    est = richardson(sizes, values)
+    assert est.order == pytest.approx(6.79, abs=0.05)
+    r = 0.005 / 0.00375
+    assert est.error_band == pytest.approx(1.25 * (162.74 - 160.52) / (r**2 - 1), rel=1e-9)
+    assert est.extrapolated == pytest.approx((r**2 * 160.52 - 162.74) / (r**2 - 1), rel=1e-9)
+    raw_band = 1.25 * (162.74 - 160.52) / (r**6.79 - 1)
+    assert est.error_band > 3 * raw_band
+    assert "formal order" in est.note
+    # power laws up to the formal order are untouched (see the parametrised test above)
+    assert richardson((0.01, 0.005, 0.0025), [25 - 300 * h**2 for h in (0.01, 0.005, 0.0025)]).note == ""

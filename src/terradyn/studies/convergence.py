@@ -11,6 +11,8 @@ with e21 = f2 - f1, e32 = f3 - f2, r21 = h2/h1, r32 = h3/h2 and s = sign(e32/e21
 value is f_ext = (r21^p f1 - f2) / (r21^p - 1) and the error band of the finest result is
 GCI = 1.25 |f1 - f2| / (r21^p - 1) (absolute, in the quantity's unit). Oscillating results (s < 0)
 or an order outside [0.2, 8] get no extrapolation: the band is then the spread of the three results.
+An observed order above the scheme's formal order (2: quadratic B-splines; Roache's advice) is not
+believed: the extrapolation and the band then use the formal order, which widens the band.
 
 References
 ----------
@@ -40,6 +42,8 @@ __all__ = [
 
 SAFETY_FACTOR = 1.25
 ORDER_RANGE = (0.2, 8.0)
+#: the highest order the MPM discretisation can show (quadratic B-spline shape functions)
+FORMAL_ORDER = 2.0
 
 
 @dataclass(frozen=True)
@@ -128,10 +132,16 @@ def richardson(cell_sizes: Sequence[float], values: Sequence[float]) -> Richards
     if not (math.isfinite(p) and ORDER_RANGE[0] <= p <= ORDER_RANGE[1]):
         note = f"observed order {p:.3g} outside [{ORDER_RANGE[0]:g}, {ORDER_RANGE[1]:g}]: no extrapolation"
         return RichardsonEstimate(p, None, spread, f1, True, note)
-    rp = r21**p
+    note = ""
+    if p > FORMAL_ORDER:
+        note = (
+            f"observed order {p:.3g} is above the formal order {FORMAL_ORDER:g} of the scheme: the "
+            f"extrapolation and the band use {FORMAL_ORDER:g}"
+        )
+    rp = r21 ** min(p, FORMAL_ORDER)
     extrapolated = (rp * f1 - f2) / (rp - 1.0)
     band = SAFETY_FACTOR * abs(f1 - f2) / (rp - 1.0)
-    return RichardsonEstimate(p, extrapolated, band, f1, True)
+    return RichardsonEstimate(p, extrapolated, band, f1, True, note)
 
 
 @dataclass(frozen=True)
