@@ -4,11 +4,11 @@ The plate (40 mm, 30 mm of it below the surface, MS, 5 mm cells, 0.05 m/s) pushe
 ahead of it. Plane-strain plasticity brackets the horizontal force per width, 0.5 gamma H^2 K:
 Rankine's smooth wall, K_p = (1 + sin phi) / (1 - sin phi), is the least a rough wall can carry;
 Coulomb's planar wedge for wall friction delta (here atan 0.4, the body-grain friction) is an upper
-estimate (a curved surface carries less). Measured: 0.648 N (mean over the last 15 mm of 30 mm), with
-Rankine 0.25 N and Coulomb 0.56 N; MPM sits 16 % above Coulomb here (at 0.05 m/s intrusion forces are
-a few per cent above their quasi-static value, docs/mpm.md, and plate forces fall with refinement). The
-test accepts the Rankine value up to 1.5 times the Coulomb one, and an upward friction force of at most
-tan(delta) times the drag.
+estimate (a curved surface carries less). Measured (travel 3-10 mm, after the wedge is mobilised and
+before the heap ahead of the plate grows) 0.628 N, 1.13 times Coulomb; over the last 15 mm the heap (a
+surcharge the level-surface theories leave out) has raised it to 0.81 N, against Rankine 0.25 N and
+Coulomb 0.56 N. The test accepts the Rankine value up to 1.5 times the Coulomb one, and an upward
+friction force of at most tan(delta) times the drag.
 """
 
 from __future__ import annotations
@@ -49,6 +49,12 @@ def test_vertical_plate_drag_between_rankine_and_coulomb():
     scale = 0.5 * gamma * 0.03**2 * 0.01
     rankine = scale * (1 + math.sin(phi)) / (1 - math.sin(phi))
     coulomb = scale * coulomb_passive(phi, delta) * math.cos(delta)
-    drag, lift = res.summary["drag_N"], res.summary["lift_N"]
+    # once the wedge is mobilised and before the heap ahead of the plate (a surcharge the level-surface
+    # theories leave out) has grown: travel 3-10 mm
+    d = res.series["distance_m"]
+    early = (d >= 0.003) & (d <= 0.010)
+    drag, lift = res.series["drag_N"][early].mean(), res.series["lift_N"][early].mean()
+    print(f"early drag {drag:.3f} N, lift {lift:.3f} N; last 15 mm {res.summary['drag_N']:.3f} N")
     assert rankine < drag < 1.5 * coulomb, (rankine, drag, coulomb)
     assert 0.0 < lift <= math.tan(delta) * drag * 1.05
+    assert res.summary["drag_N"] > drag  # the heap raises the drag over the last 15 mm
