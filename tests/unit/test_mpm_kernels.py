@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from mpm_reference import KERNEL_H, KERNEL_ORIGIN, KERNEL_SHAPE, kernel_particles
 from terradyn.mpm import _kernels as K
 from terradyn.mpm._reference import (
     g2p_reference,
@@ -14,9 +15,9 @@ from terradyn.mpm._reference import (
 )
 from terradyn.mpm.model import GranularModel
 
-H = 0.01
-X0, Z0 = -0.02, -0.03
-SHAPE = (14, 12)
+H = KERNEL_H
+X0, Z0 = KERNEL_ORIGIN
+SHAPE = KERNEL_SHAPE
 MODEL = GranularModel(
     youngs_modulus=2e6,
     poisson_ratio=0.33,
@@ -29,20 +30,7 @@ MODEL = GranularModel(
     bulk_density=1560.0,
     surface_friction=0.4,
 )
-
-
-def particles(seed: int, n: int = 300):
-    rng = np.random.default_rng(seed)
-    pos = np.column_stack(
-        [rng.uniform(X0 + 2.5 * H, X0 + 10.5 * H, n), rng.uniform(Z0 + 2.5 * H, Z0 + 8.5 * H, n)]
-    )
-    vel = rng.normal(0, 0.1, (n, 2))
-    aff = rng.normal(0, 1.0, (n, 2, 2))
-    stress = -np.abs(rng.normal(800, 300, (n, 4)))
-    stress[:, 2] = rng.normal(0, 200, n)
-    mass = rng.uniform(0.03, 0.05, n)
-    vol = mass / rng.uniform(1480, 1700, n)
-    return pos, vel, aff, stress, mass, vol
+particles = kernel_particles
 
 
 def run_p2g(pos, vel, aff, stress, mass, vol, dt):

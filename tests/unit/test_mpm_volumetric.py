@@ -5,39 +5,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from mpm_reference import KERNEL_H, KERNEL_ORIGIN, KERNEL_SHAPE, MODEL, kernel_particles
 from terradyn.errors import InputError
 from terradyn.mpm import _kernels as K
-from terradyn.mpm.model import GranularModel
 from terradyn.mpm.specs import Resolution
 
-H = 0.01
-X0, Z0 = -0.02, -0.03
-SHAPE = (14, 12)
-MODEL = GranularModel(
-    youngs_modulus=2e6,
-    poisson_ratio=0.33,
-    friction_coefficient=0.5,
-    friction_coefficient_2=0.7,
-    inertial_number_0=0.278,
-    grain_diameter=1e-3,
-    grain_density=2600.0,
-    critical_density=1500.0,
-    bulk_density=1560.0,
-    surface_friction=0.4,
-)
-
-
-def particles(seed: int, n: int = 300):
-    """Random points inside the grid, away from its edges: positions, velocities, affine matrices,
-    stresses, masses, volumes."""
-    rng = np.random.default_rng(seed)
-    pos = np.column_stack(
-        [rng.uniform(X0 + 2.5 * H, X0 + 10.5 * H, n), rng.uniform(Z0 + 2.5 * H, Z0 + 8.5 * H, n)]
-    )
-    stress = -np.abs(rng.normal(800, 300, (n, 4)))
-    stress[:, 2] = rng.normal(0, 200, n)
-    mass = rng.uniform(0.03, 0.05, n)
-    return pos, rng.normal(0, 0.1, (n, 2)), rng.normal(0, 1.0, (n, 2, 2)), stress, mass, mass / 1600.0
+H = KERNEL_H
+X0, Z0 = KERNEL_ORIGIN
+SHAPE = KERNEL_SHAPE
+particles = kernel_particles
 
 
 def _no_body(n):
