@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from mpm_reference import MODEL
+from mpm_reference import KERNEL_H, KERNEL_ORIGIN, KERNEL_SHAPE, MODEL, kernel_particles
 from terradyn.errors import InputError
 from terradyn.geometry import Composite, Plate, WheelCircular
 from terradyn.mpm import _kernels as K
@@ -20,25 +20,10 @@ from terradyn.mpm._reference import (
 )
 from terradyn.mpm.bodies import ContactScheme, body_segments, check_footprint, effective_body
 
-H = 0.01
-X0, Z0 = -0.02, -0.03
-SHAPE = (14, 12)
-
-
-def particles(seed: int, n: int = 300):
-    """Random particles inside the grid's interior (as in test_mpm_kernels)."""
-    rng = np.random.default_rng(seed)
-    pos = np.column_stack(
-        [rng.uniform(X0 + 2.5 * H, X0 + 10.5 * H, n), rng.uniform(Z0 + 2.5 * H, Z0 + 8.5 * H, n)]
-    )
-    vel = rng.normal(0, 0.1, (n, 2))
-    aff = rng.normal(0, 1.0, (n, 2, 2))
-    stress = -np.abs(rng.normal(800, 300, (n, 4)))
-    stress[:, 2] = rng.normal(0, 200, n)
-    mass = rng.uniform(0.03, 0.05, n)
-    vol = mass / rng.uniform(1480, 1700, n)
-    return pos, vel, aff, stress, mass, vol
-
+H = KERNEL_H
+X0, Z0 = KERNEL_ORIGIN
+SHAPE = KERNEL_SHAPE
+particles = kernel_particles
 
 POSE = np.array([X0 + 6.37 * H, Z0 + 5.52 * H, 0.3])  # a tilted zero-thickness plate
 SEG = body_segments(Plate(0.05, 0.1), H)
