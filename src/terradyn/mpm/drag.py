@@ -28,11 +28,9 @@ from ._contact_kernels import polygon_sdf
 from .bodies import body_segments
 from .model import GranularModel
 from .runs import (
-    INTRUSION_CELLS_ACROSS,
     WALL_MARGIN,
     _body_state,
     _Common,
-    _common,
     _execute,
     _metadata,
     _MPMResult,
@@ -41,8 +39,8 @@ from .runs import (
     _runner,
     _series,
     _settle_phases,
-    _specs,
     mechanism_clearance,
+    prescribed_body_setup,
 )
 from .solver import BedGrid, ParticleState, Phase, stable_time_step
 from .specs import Bed, Outputs, Resolution, Stroke
@@ -173,17 +171,8 @@ def run_drag(
     per quarter cell). The flat keywords of earlier releases and the model overrides
     (``dilatancy=``, ``friction_coefficient=``...) work as in :func:`~terradyn.mpm.run_intrusion`.
     """
-    specs, overrides = _specs(
-        "run_drag", legacy, "bed_length", bed=bed, resolution=resolution, outputs=outputs, stroke=stroke
-    )
-    c, eff = _common(
-        body,
-        material,
-        specs["bed"],
-        specs["resolution"],
-        overrides,
-        min_cells=6,
-        default_cells=INTRUSION_CELLS_ACROSS,
+    specs, c, eff = prescribed_body_setup(
+        "run_drag", body, material, legacy, bed, resolution, outputs, stroke
     )
     outputs, h = specs["outputs"], c.cell_size
     check_positive("depth", depth)

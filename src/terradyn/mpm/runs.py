@@ -382,6 +382,34 @@ def _runner(c: _Common, grid, state, dt, phases, every, reference_speed, outputs
     return runner
 
 
+def prescribed_body_setup(
+    function: str,
+    body: Body,
+    material: Material | GranularModel,
+    legacy: dict[str, Any],
+    bed: Bed,
+    resolution: Resolution,
+    outputs: Outputs,
+    stroke: Stroke,
+) -> tuple[dict[str, Any], _Common, Body]:
+    """The specs (flat keywords folded in), the shared settings and the effective body of a run that
+    moves a body along a prescribed path (``run_intrusion``, ``run_drag``): at least 6 cells and by
+    default :data:`INTRUSION_CELLS_ACROSS` across the body."""
+    specs, overrides = _specs(
+        function, legacy, "bed_length", bed=bed, resolution=resolution, outputs=outputs, stroke=stroke
+    )
+    c, eff = _common(
+        body,
+        material,
+        specs["bed"],
+        specs["resolution"],
+        overrides,
+        min_cells=6,
+        default_cells=INTRUSION_CELLS_ACROSS,
+    )
+    return specs, c, eff
+
+
 def run_intrusion(
     body: Body,
     material: Material | GranularModel,
@@ -434,17 +462,8 @@ def run_intrusion(
     ``progress`` may change). On KeyboardInterrupt the state at the end of the last completed chunk
     is checkpointed and :class:`~terradyn.mpm.solver.RunInterrupted` is raised.
     """
-    specs, overrides = _specs(
-        "run_intrusion", legacy, "bed_length", bed=bed, resolution=resolution, outputs=outputs, stroke=stroke
-    )
-    c, eff = _common(
-        body,
-        material,
-        specs["bed"],
-        specs["resolution"],
-        overrides,
-        min_cells=6,
-        default_cells=INTRUSION_CELLS_ACROSS,
+    specs, c, eff = prescribed_body_setup(
+        "run_intrusion", body, material, legacy, bed, resolution, outputs, stroke
     )
     outputs, h = specs["outputs"], c.cell_size
     check_positive("depth", depth)
