@@ -160,7 +160,8 @@ def default_wheel(drive_seconds: float = 0.2) -> None:
     here."""
     from terradyn.geometry import WheelCircular
     from terradyn.mpm import Bed, Drive, run_wheel
-    from terradyn.mpm.runs import DRIVE_RADIANS, settle_time
+    from terradyn.mpm.runs import settle_time
+    from terradyn.mpm.wheel_runs import DRIVE_RADIANS
 
     wheel, ms = WheelCircular(0.13, 0.16), materials.get("MS")
     short = dict(load=130.0, omega=1.0, slip=0.3, bed=Bed(settle_time=0.01), drive=Drive(sink_time=0.01))

@@ -12,7 +12,7 @@ from .. import materials
 from ..geometry import Body, Plate, WheelCircular
 from ..locomotion import wheel_steady
 from ..mpm.bodies import effective_body
-from ..mpm.runs import WHEEL_CELLS_ACROSS
+from ..mpm.wheel_runs import WHEEL_CELLS_ACROSS
 from ..results import TableResult
 from ..rft import li2013_alpha_material
 from .registry import StudyOutput, _Params, register_study

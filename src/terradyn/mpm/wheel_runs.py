@@ -1,0 +1,306 @@
+"""Library entry point :func:`run_wheel`: a rigid wheel driven through a settled bed, with a frozen
+result; built from the pieces of :mod:`terradyn.mpm.runs` (specs, settling phases, the runner).
+
+All inputs are SI (angles in rad). Forces are the grains' force on the wheel [N] (the 2D per-width
+value times the wheel width); torques are about +y through the axle [N m].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError, check_positive, check_range
+from ..geometry import Body
+from ..materials import Material
+from .bodies import body_segments, lowest_point
+from .model import GranularModel
+from .runs import (
+    _body_state,
+    _Common,
+    _common,
+    _execute,
+    _metadata,
+    _MPMResult,
+    _output_every,
+    _run_inputs,
+    _runner,
+    _series,
+    _settle_phases,
+    _specs,
+)
+from .solver import BedGrid, Phase, stable_time_step
+from .specs import Bed, Drive, Outputs, Resolution
+
+__all__ = ["WheelResult", "run_wheel"]
+
+
+@dataclass(frozen=True, eq=False)
+class WheelResult(_MPMResult):
+    """Result of :func:`run_wheel`; summary adds ``sinkage_m``, ``drawbar_pull_N``, ``drive_torque_Nm``."""
+
+
+#: Default cells across a wheel's diameter. Measured on the 0.13 m x 0.16 m wheel in MS under 130 N at
+#: slip 0.3 (docs/mpm.md) at 16 / 24 / 32 cells across: sinkage below the bed surface 0.5 / 16.6 /
+#: 16.6 mm (runs made before the bed snapped to whole cells, corrected for their surface offsets of
+#: -8 / -3 / 0 mm), drive torque 5.30 / 5.39 / 5.43 N m, drawbar pull -1.9 / -2.0 / -0.7 N. At 16 cells
+#: the wheel barely sank, so the default is 32.
+WHEEL_CELLS_ACROSS = 32
+#: Default drive of a spinning wheel [rad of rotation]. Measured on the wheel above at 8 mm cells: the
+#: pull averaged over 0.5 rad windows starting 1, 1.5, 1.9, 2.25 and 3 rad into the drive is 1.2, 0.2,
+#: -0.4, -0.7 and -0.8 N (within 0.1 N of its final value from about 2.25 rad); the sinkage stays within
+#: 0.6 mm of its final value from 1 rad. With 4.5 rad the averaged last half starts at 2.25 rad.
+DRIVE_RADIANS = 4.5
+
+
+def _nominal_radius(wheel: Body) -> float:
+    r = getattr(wheel, "outer_radius", None)
+    return float(r) if r is not None else float(wheel.bounding_radius)
+
+
+def _wheel_margin(reach: float, cell_size: float) -> float:
+    """Grains [m] a wheel bed keeps beyond the wheel's reach on either side of its path."""
+    return max(2.0 * reach, 4.0 * cell_size)
+
+
+def _wheel_bed(seg, c: _Common, travel, v_forward):
+    """Bed for a wheel run and its start pose (lowest point half a cell above the surface)."""
+    h = c.cell_size
+    reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
+    margin = _wheel_margin(reach, h)
+    bed_depth, bed_length = c.bed.depth, c.bed.width
+    bed_depth = 2.0 * reach + margin if bed_depth is None else bed_depth
+    bed_length = travel + 2.0 * (reach + margin) if bed_length is None else bed_length
+    check_positive("bed_length", bed_length)
+    x_start = -0.5 * travel if v_forward >= 0 else 0.5 * travel
+    grid = BedGrid(bed_length, bed_depth, 2.0 * reach + 4 * h, h, -0.5 * bed_length, c.walls)
+    if 0.5 * travel + reach > 0.5 * bed_length:
+        raise InputError(
+            "bed_length", bed_length, f"at least {travel + 2 * reach:.4g} m", "the wheel leaves the bed"
+        )
+    pose0 = np.array([x_start, 0.0, 0.0])
+    pose0[1] = -lowest_point(seg, pose0) + 0.5 * h
+    return grid, pose0
+
+
+def _wheel_window(c: _Common, reach: float) -> float:
+    """Length [m] of the moving window of a wheel run: ``bed.window``, or by default the wheel and the
+    bed margin of :func:`_wheel_bed` on either side (the bed a wheel that does not travel gets).
+
+    Measured in docs/mpm.md ("Moving window"): the window changes the forces of the forced-slip wheel
+    study by as much as moving the walls does, and saves the grains beyond it.
+    """
+    h = c.cell_size
+    smallest = 2.0 * reach + 8.0 * h
+    if c.bed.window is None:
+        return 2.0 * (reach + _wheel_margin(reach, h))
+    if 0.0 < c.bed.window < smallest:
+        raise InputError(
+            "window",
+            c.bed.window,
+            f"0 (the whole bed) or at least {smallest:.4g} m",
+            "the wheel and 4 cells each side",
+        )
+    return c.bed.window
+
+
+def _wheel_summary(runner, width, seg, average_fraction, radius, load):
+    """Time series with wheel columns, and the summary averaged over the end of the drive."""
+    series = _series(runner, width, skip_phases=1)
+    poses = zip(series["x_m"], series["z_m"], series["theta_rad"], strict=True)
+    lows = np.array([lowest_point(seg, np.array(pose)) for pose in poses])
+    series = {
+        **series,
+        "sinkage_m": -lows,
+        "drawbar_pull_N": series["force_x_N"],
+        "drive_torque_Nm": -series["torque_y_Nm"],
+    }
+    drive = np.flatnonzero(series["phase"] == "drive")
+    sel = drive[int(len(drive) * (1.0 - average_fraction)) :]
+    vx = float(series["vx_m_s"][sel].mean())
+    omega = float(series["omega_rad_s"][sel].mean())
+    summary = {
+        "sinkage_m": float(series["sinkage_m"][sel].mean()),
+        "drawbar_pull_N": float(series["drawbar_pull_N"][sel].mean()),
+        "drive_torque_Nm": float(series["drive_torque_Nm"][sel].mean()),
+        "force_z_N": float(series["force_z_N"][sel].mean()),
+        "load_N": float(load),
+        "omega_rad_s": omega,
+        "forward_velocity_m_s": vx,
+    }
+    if omega != 0:
+        summary["slip"] = float(1.0 - vx / (omega * radius))
+    return series, summary
+
+
+@dataclass(frozen=True)
+class _WheelMotion:
+    """The checked drive of a wheel run: commands, the largest spin, forward speed and run length."""
+
+    torque_mode: bool
+    torque: float
+    omega: float
+    slip: float | None
+    spin: float
+    v_forward: float
+    travel: float
+    duration: float
+    sink_time: float
+
+    @property
+    def direction(self) -> float:
+        return self.v_forward if not self.torque_mode else (1.0 if self.torque >= 0 else -1.0)
+
+
+def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, drive_torque, drawbar_load,
+                  max_omega) -> _WheelMotion:  # fmt: skip
+    check_positive("load", load)
+    torque_mode = drive_torque is not None
+    if (omega is None) == (drive_torque is None):
+        raise InputError("omega", omega, "exactly one of omega or drive_torque", "give one of them")
+    torque, omega_cmd = 0.0, 0.0
+    if drive_torque is not None:
+        torque = check_range("drive_torque", drive_torque, -1e6, 1e6, unit="N m")
+        if slip is not None:
+            raise InputError("slip", slip, "None with drive_torque", "the spin is free under a torque")
+        check_range("max_omega", max_omega, 1e-3, 200.0, unit="rad/s")
+    elif omega is not None:
+        omega_cmd = check_range("omega", omega, -200.0, 200.0, unit="rad/s")
+    if slip is not None:
+        slip = check_range("slip", slip, -1.0, 1.0)
+        if drawbar_load != 0.0:
+            raise InputError(
+                "drawbar_load", drawbar_load, "0 when slip is given", "the forward speed is imposed"
+            )
+    check_range("drawbar_load", drawbar_load, -10.0 * load, 10.0 * load, unit="N")
+    spin = max_omega if torque_mode else abs(omega_cmd)  # the largest spin the step must resolve
+    duration = drive.duration
+    if duration is None:
+        steady = not torque_mode and spin != 0
+        duration = DRIVE_RADIANS / spin if steady else 20.0 * math.sqrt(reach / c.gravity)
+    check_positive("duration", duration)
+    sink_time = 3.0 * math.sqrt(reach / c.gravity) if drive.sink_time is None else drive.sink_time
+    if torque_mode:
+        v_forward, travel = 0.0, spin * radius * duration
+    else:
+        v_forward = (1.0 - slip) * omega_cmd * radius if slip is not None else omega_cmd * radius
+        travel = abs(v_forward) * duration
+    return _WheelMotion(torque_mode, torque, omega_cmd, slip, spin, v_forward, travel, duration, sink_time)
+
+
+def run_wheel(
+    wheel: Body,
+    material: Material | GranularModel,
+    *,
+    load: float,
+    omega: float | None = None,
+    slip: float | None = None,
+    drive_torque: float | None = None,
+    drawbar_load: float = 0.0,
+    max_omega: float = 5.0,
+    inertia: float | None = None,
+    bed: Bed = Bed(),
+    resolution: Resolution = Resolution(),
+    outputs: Outputs = Outputs(),
+    drive: Drive = Drive(),
+    **legacy: Any,
+) -> WheelResult:
+    """Drive a wheel (any body) over a settled bed under a vertical ``load`` [N].
+
+    The wheel first sinks under its load for ``drive.sink_time`` [s] (not spinning, vertical motion
+    free, grains damped), then spins at ``omega`` [rad/s] about +y for ``drive.duration`` [s]. With
+    ``slip`` given the forward speed is prescribed, ``vx = (1 - slip) omega r`` (r: nominal outer
+    radius), and the vertical motion is free under the load; with ``slip=None`` both translations are
+    free (self-propelled). ``omega = 0`` with ``slip=None`` leaves a body resting under its load. The
+    default duration is ``4.5 / |omega|`` (:data:`DRIVE_RADIANS`): starting from the pit it sank
+    into, a wheel's pull settles after about 2.25 rad of rotation (measured for a 0.13 m wheel on MS at
+    slip 0.3), so the averaged last half of the drive is steady.
+
+    Torque control: give ``drive_torque`` [N m] (+ drives forward) instead of ``omega``; the spin is
+    then free, with moment of inertia ``inertia`` [kg m^2] (default a uniform disc of the load's mass,
+    ``load / g r^2 / 2``), starting from rest, and the forward motion is free. The time step is sized
+    for spins up to ``max_omega`` [rad/s]; a wheel that spins up beyond it (a torque the bed cannot
+    resist) stops the run with :class:`~terradyn.mpm.MPMInstabilityError`. The default duration is
+    then ``20 sqrt(r / g)``. ``drawbar_load`` [N] is a horizontal resisting force on the axle (a towed
+    load, + backwards) whenever the forward motion is free.
+
+    The summary averages the last ``drive.average_fraction`` of the drive: ``sinkage_m`` (depth of
+    the lowest point below z = 0), ``drawbar_pull_N`` (horizontal soil force, + forward),
+    ``drive_torque_Nm`` (= -soil torque about +y at the axle), ``force_z_N``, ``slip`` (measured).
+
+    Specs as in :func:`run_intrusion`, with :class:`Drive` for the run length. The bed's sizing rule
+    leaves max(2 reaches, 4 cells) of grains beyond the wheel's path and below two reaches; its
+    ``width`` is the bed length. The resolution needs 8 cells across the wheel by default.
+    ``outputs`` intervals are in seconds of simulated time (record: duration / 200, snapshots:
+    duration / 20). The flat keywords of earlier releases (``cell_size=``, ``duration=``,
+    ``bed_length=``...) and the model overrides work as in :func:`run_intrusion`.
+    """
+    specs, overrides = _specs(
+        "run_wheel", legacy, "bed_width", bed=bed, resolution=resolution, outputs=outputs, drive=drive
+    )
+    c, eff = _common(
+        wheel,
+        material,
+        specs["bed"],
+        specs["resolution"],
+        overrides,
+        min_cells=8,
+        default_cells=WHEEL_CELLS_ACROSS,
+    )
+    outputs, h, g = specs["outputs"], c.cell_size, c.gravity
+    radius = _nominal_radius(wheel)
+    seg = body_segments(eff, h)
+    reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
+    m = _wheel_motion(
+        c, specs["drive"], radius, reach, load, omega, slip, drive_torque, drawbar_load, max_omega
+    )
+    grid, pose0 = _wheel_bed(seg, c, m.travel, m.direction)
+    v_max = m.spin * reach + (m.spin * radius if m.torque_mode else abs(m.v_forward)) + math.sqrt(2 * g * h)
+    dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=v_max)
+    w = wheel.width
+    mass = load / g / w
+    inertia_w = 0.5 * mass * radius**2 if inertia is None else check_positive("inertia", inertia) / w
+    load_w = np.array([-drawbar_load / w, -load / w, m.torque / w])
+    state = _body_state(c, seg, pose0, np.zeros(3, dtype=np.bool_), mass, load_w, w, inertia_w)
+    settle_phases, settle = _settle_phases(c, grid.depth, dt)
+    damping = c.model.wave_speed() / grid.depth
+    drive_twist = (m.v_forward if m.slip is not None else 0.0, 0.0, m.omega)
+    phases = [
+        *settle_phases,
+        Phase("sink", max(1, round(m.sink_time / dt)), damping=damping, free=(False, True, False)),
+        Phase("drive", max(1, round(m.duration / dt)), twist=drive_twist,
+              free=(m.slip is None, True, m.torque_mode)),
+    ]  # fmt: skip
+    every = _output_every(outputs, dt, None, m.duration / 200.0, m.duration / 20.0)
+    named = dict(
+        run="wheel",
+        load=load,
+        omega=omega,
+        slip=slip,
+        drive_torque=drive_torque,
+        drawbar_load=drawbar_load,
+        max_omega=max_omega if m.torque_mode else None,
+        inertia=inertia_w * w,
+        duration=m.duration,
+        sink_time=m.sink_time,
+        settle_time=settle,
+        bed_length=grid.width,
+        bed_depth=grid.depth,
+        frame_count=outputs.frame_count,
+    )
+    runner = _runner(c, grid, state, dt, phases, every, v_max, outputs, _run_inputs(c, wheel, named))
+    runner.window = _wheel_window(c, reach)
+    wall = _execute(runner, outputs.resume, eff)
+    avg = specs["drive"].average_fraction
+    series, summary = _wheel_summary(runner, w, seg, avg, radius, load)
+    summary["drawbar_load_N"] = float(drawbar_load)
+    if m.torque_mode:
+        summary["applied_torque_Nm"] = m.torque
+    meta = _metadata(runner, c.model, wheel, eff, wall)
+    meta["mode"] = (
+        "torque-driven" if m.torque_mode else "forced-slip" if m.slip is not None else "self-propelled"
+    )
+    return WheelResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())
