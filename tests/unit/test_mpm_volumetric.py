@@ -27,7 +27,8 @@ def _divergence(pos, vol, gv, geo=None, node=None):
     geo = g if geo is None else geo
     node = nd if node is None else node
     out = np.empty(len(pos))
-    K.patch_divergence(pos, vol, geo, node, gv, np.zeros_like(gv), X0, Z0, H, np.zeros((*SHAPE, 3, 2)), out)
+    patch, keys = np.zeros((*SHAPE, 3, 2)), np.empty((len(pos), 3), np.int64)
+    K.patch_divergence(pos, vol, geo, node, gv, np.zeros_like(gv), X0, Z0, H, patch, keys, out)
     return out
 
 

@@ -294,7 +294,7 @@ def g2p(
 
 
 @njit(cache=True, fastmath=True, parallel=True)
-def patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, div_bar):
+def patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, keys, div_bar):
     """Patch-averaged velocity divergence of every particle into ``div_bar`` (N,) [1/s].
 
     A patch is the node-centred cell of the particle's nearest grid node; near a body (``geo[p]`` has
@@ -304,12 +304,11 @@ def patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch
     weights. This is the B-bar idea for material points (Coombs et al. 2018, Comput. Methods Appl.
     Mech. Engrg. 333, 1-21, doi:10.1016/j.cma.2018.01.010): one volumetric rate per patch instead of
     one per point, which frees isochoric plastic flow from volumetric locking. ``patch`` (nx, nz, 3,
-    2) is scratch.
+    2) and ``keys`` (N, 3) int64 are scratch.
     """
     n = pos.shape[0]
     inv_h = 1.0 / h
     patch[:] = 0.0
-    keys = np.empty((n, 3), dtype=np.int64)
     for p in prange(n):
         wx = np.empty(3)
         wz = np.empty(3)
@@ -423,6 +422,7 @@ def advance(
     n_patch = grid_mass.shape[0] if averaged else 0
     patch = np.zeros((n_patch, grid_mass.shape[1] if averaged else 0, 3, 2))
     div_bar = np.empty(pos.shape[0] if averaged else 0)
+    keys = np.empty((pos.shape[0] if averaged else 0, 3), dtype=np.int64)
     if not sides:
         geo[:] = 0.0
     for step in range(n_steps):
@@ -460,7 +460,7 @@ def advance(
             pose[2] += dt * twist[2]
         # 3. grid -> particle, stress update; particles kept out of the body
         if averaged:
-            patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, div_bar)
+            patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, keys, div_bar)
         g2p(
             pos,
             vel,
