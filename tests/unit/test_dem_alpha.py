@@ -159,3 +159,11 @@ def test_horizontal_plate_alpha_z_within_band_of_zeta_calibrated_from_oblique_ru
     fit = fit_rft(data, plate_length=L, plate_width=0.02)
     _, az90 = _alpha(p, 90.0)
     assert 0.65 < az90 / fit.zeta < 1.35, (az90, fit.zeta)
+
+
+def test_a_missing_mpm_csv_is_one_line_before_any_dem_work(run_cli, tmp_path):
+    study = tmp_path / "s.toml"
+    study.write_text('[study]\nkind = "dem-alpha"\n[parameters]\nmpm_csv = "nowhere.csv"\n', encoding="utf-8")
+    code, _, err = run_cli("study", "run", str(study), "--out", str(tmp_path / "a"))
+    assert code == 1
+    assert len(err.strip().splitlines()) == 1 and "mpm_csv = 'nowhere.csv'" in err, err
