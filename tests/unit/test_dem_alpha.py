@@ -111,8 +111,8 @@ def _rows(data, direction_deg: float):
     return {"depth_m": data.depth_m[k], "force_x_N": data.force_x_N[k], "force_z_N": data.force_z_N[k]}
 
 
-def _alpha(data, direction_deg: float) -> tuple[float, float]:
-    ax, az, *_ = window_alpha(_rows(data, direction_deg), depth=DEPTH, window=2 * D, area=L * 0.02)
+def _alpha(data, direction_deg: float, *, depth: float = DEPTH, window: float = 2 * D) -> tuple[float, float]:
+    ax, az, *_ = window_alpha(_rows(data, direction_deg), depth=depth, window=window, area=L * 0.02)
     return ax, az
 
 
@@ -120,18 +120,20 @@ def _alpha(data, direction_deg: float) -> tuple[float, float]:
 def test_mirror_directions_give_opposite_alpha_x_and_equal_alpha_z(plate_test):
     """A horizontal plate moving at 90 - 30 and 90 + 30 deg: the mirror image of one motion is the
     other, so alpha_x changes sign and alpha_z is equal, within the DEM's scatter (both from one bed,
-    whose grains are not mirror-symmetric).
+    whose grains are not mirror-symmetric). The symmetry holds at every depth, so alpha here is the
+    mean over the rows with the centre 6-18 mm deep (about 35 rows; the two-grain window's alpha_x
+    scatters as much as its mean: alpha_x(60) = 0.002 alpha_z in the test's bed).
 
-    Measured over bed seeds 1-5 (this configuration; the test's seed 12345 is a sixth bed): |alpha_x(60)
-    + alpha_x(120)| up to 0.063 alpha_z, |alpha_z(60) - alpha_z(120)| up to 0.14 alpha_z (alpha_x(60)
-    itself 0.07-0.14 alpha_z; RFT's generic law: 0.074); the tolerances are about twice the largest.
-    The signs carry the test's teeth: a sign error or a lost x-force fails them.
+    Measured over six beds (seeds 1-5 and the test's 12345): alpha_x(60) from 0.046 to 0.101 alpha_z
+    (RFT's generic law: 0.074), |alpha_x(60) + alpha_x(120)| up to 0.044 alpha_z, |alpha_z(60) -
+    alpha_z(120)| up to 0.134 alpha_z; the tolerances are twice the largest. The signs carry the
+    test's teeth: a sign error or a lost x-force fails them.
     """
-    ax60, az60 = _alpha(plate_test.data, 60.0)
-    ax120, az120 = _alpha(plate_test.data, 120.0)
+    ax60, az60 = _alpha(plate_test.data, 60.0, depth=0.012, window=0.012)
+    ax120, az120 = _alpha(plate_test.data, 120.0, depth=0.012, window=0.012)
     assert ax60 > 0 > ax120  # resists the motion along +x, then along -x
-    assert abs(ax60 + ax120) < 0.12 * 0.5 * (az60 + az120)
-    assert abs(az60 - az120) < 0.3 * 0.5 * (az60 + az120)
+    assert abs(ax60 + ax120) < 0.09 * 0.5 * (az60 + az120)
+    assert abs(az60 - az120) < 0.27 * 0.5 * (az60 + az120)
 
 
 @pytest.mark.slow
@@ -140,11 +142,11 @@ def test_horizontal_plate_alpha_z_within_band_of_zeta_calibrated_from_oblique_ru
     of ``terradyn calibrate rft --from-dem``, then predict the run the fit did not see: the plate
     pushed straight down, whose alpha_z in the fitted medium is zeta itself.
 
-    Band: DEM alpha_z(0, 90 deg) / zeta within 1 +- 0.35. Measured over bed seeds 1-5 (the test's seed
-    12345 is a sixth bed): ratio 0.73, 0.87, 0.90, 0.98, 1.00 (mean 0.90, standard deviation 0.11).
+    Band: DEM alpha_z(0, 90 deg) / zeta within 1 +- 0.35. Measured over six beds (seeds 1-5 and the
+    test's 12345): ratio 0.73, 0.84, 0.87, 0.90, 0.98, 1.00 (mean 0.89, standard deviation 0.10).
     The spread is the DEM force's: the per-row scatter of alpha_z in the two-grain window is 20-30 %,
-    the window mean varies by 13 % from bed to bed, the fitted zeta by 3 %. The band is three times
-    the measured spread of the ratio around 1. It fails if the DEM's direction dependence departs from
+    the window mean varies by 11 % from bed to bed, the fitted zeta by 4 %. The band is about three
+    times the measured spread of the ratio around 1. It fails if the DEM's direction dependence departs from
     RFT's generic shape by more than that (alpha_z(60) / alpha_z(90): 0.916 in RFT, 0.80-1.07
     measured), or if the calibration's normalisation (plate area, per unit width, depth) and the
     map's differ.
