@@ -23,12 +23,14 @@ def _no_body(n):
 
 
 def _divergence(pos, vol, gv, geo=None, node=None):
+    """Patch divergence with the far-side grain field equal to the near one (the split is then the
+    only thing a body changes)."""
     g, nd = _no_body(len(pos))
     geo = g if geo is None else geo
     node = nd if node is None else node
     out = np.empty(len(pos))
-    patch, keys = np.zeros((*SHAPE, 3, 2)), np.empty((len(pos), 3), np.int64)
-    K.patch_divergence(pos, vol, geo, node, gv, np.zeros_like(gv), X0, Z0, H, patch, keys, out)
+    patch, keys = np.zeros((*SHAPE, 5, 2)), np.empty((len(pos), 3), np.int64)
+    K.patch_divergence(pos, vol, geo, node, gv, gv.copy(), X0, Z0, H, patch, keys, out)
     return out
 
 
@@ -80,17 +82,37 @@ def test_patch_average_keeps_each_patch_total_and_removes_the_spread_within_it()
 
 
 def test_the_two_sides_of_a_thin_body_are_not_averaged_together():
-    # two points in one patch, one above and one below a body surface (opposite normals)
+    # two points in the patch of node (5, 5), one above and one below a body surface (opposite normals)
     pos = np.array([[X0 + 5.0 * H, Z0 + 5.2 * H], [X0 + 5.0 * H, Z0 + 4.8 * H]])
     vol = np.ones(2) * 1e-5
     gv = np.random.default_rng(5).normal(0, 0.05, (*SHAPE, 2))
     geo = np.array([[0.0, 1.0, 0.001], [0.0, -1.0, 0.001]])
-    _, node = _no_body(2)
-    bar = _divergence(pos, vol, gv, geo=geo, node=node)
+    _, band = _no_body(2)
+    band[5, 5] = (0.0, 1.0, 0.0)  # node (5, 5) is in the body's band
+    bar = _divergence(pos, vol, gv, geo=geo, node=band)
     np.testing.assert_allclose(bar, _point_divergence(pos, gv), rtol=1e-10)
     geo_same = np.array([[0.0, 1.0, 0.001], [0.0, 1.0, 0.001]])
-    bar_same = _divergence(pos, vol, gv, geo=geo_same, node=node)
+    bar_same = _divergence(pos, vol, gv, geo=geo_same, node=band)
     assert bar_same[0] == pytest.approx(bar_same[1], rel=1e-12)
+    # away from the band the body normals do not split a patch (the two fields are one there)
+    _, no_band = _no_body(2)
+    bar_far = _divergence(pos, vol, gv, geo=geo, node=no_band)
+    assert bar_far[0] == pytest.approx(bar_far[1], rel=1e-12)
+    assert bar_far[0] != pytest.approx(bar[0], rel=1e-6)
+
+
+def test_the_side_split_is_mirror_equivariant():
+    """Mirroring x maps each side key to one key (a horizontal normal is not sent above or below by
+    the sign of its x component), so a mirrored case groups its points as the original does."""
+    normals = [(1.0, 0.0), (0.6, 0.8), (0.8, 0.6), (0.0, -1.0), (0.3, -0.95), (1.0, 1e-9)]
+    keys = {n: K._side_key(*n) for n in normals}
+    mirrored = {n: K._side_key(-n[0], n[1]) for n in normals}
+    pairing = {}
+    for n in normals:
+        pairing.setdefault(keys[n], set()).add(mirrored[n])
+    assert all(len(v) == 1 for v in pairing.values())
+    assert K._side_key(0.0, 1.0) != K._side_key(0.0, -1.0)
+    assert K._side_key(1.0, 0.0) != K._side_key(-1.0, 0.0)
 
 
 def test_g2p_with_the_patch_divergence_changes_only_the_isotropic_rate():

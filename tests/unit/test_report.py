@@ -35,8 +35,29 @@ def test_quick_report_names_every_item_and_embeds_figures(quick_report):
     # models without a row are listed as pending, never silently dropped
     assert "pending" in html and "MPM" in html
     # the MPM rows that ship run in the quick report (terradyn.mpm.report_rows)
-    for key in ("ch9-plate-packing", "ch9-wedges", "fig-9-1", "fig-6-8"):
+    for key in ("ch9-plate-packing", "ch9-wedges", "fig-9-1", "fig-6-8", "fig-4-1", "ch4-plate-depth",
+                "ch8-high-speed"):  # fmt: skip
         assert run.results[(key, "mpm")]["status"] == "ran"
+
+
+def test_quick_mpm_rows_of_chapters_4_and_8(quick_report):
+    """The MPM alpha map's mirror pair (directions 60 and 120 deg, horizontal plate) gives equal alpha_z
+    and opposite alpha_x; the plate keeps gaining force with depth; the wheel row reads its series."""
+    _, run = quick_report
+    alpha = run.results[("fig-4-1", "mpm")]
+    a, b = alpha["tables"]["alpha_map"]
+    assert (a["direction_deg"], b["direction_deg"]) == (60.0, 120.0)
+    assert b["alpha_z_mpm_N_per_m3"] == pytest.approx(a["alpha_z_mpm_N_per_m3"], rel=0.02)
+    assert b["alpha_x_mpm_N_per_m3"] == pytest.approx(-a["alpha_x_mpm_N_per_m3"], rel=0.05)
+    mirror = next(f for f in alpha["findings"] if f["text"].startswith("mirror pair"))
+    assert mirror["verdict"] == "agrees"
+    (depth,) = run.results[("ch4-plate-depth", "mpm")]["tables"]["plate_depth"]
+    assert depth["slope_mpm_N_per_m"] > 0 and depth["slope_rft_N_per_m"] > 0
+    (wheel,) = run.results[("ch8-high-speed", "mpm")]["tables"]["high_speed"]
+    assert 0.0 < wheel["slip_mpm"] < 1.0 and wheel["sinkage_mpm_m"] > 0.0
+    assert f"slip {wheel['slip_mpm']:.2f}" in " ".join(
+        f["text"] for f in run.results[("ch8-high-speed", "mpm")]["findings"]
+    )
 
 
 def test_rerun_reuses_the_cache(quick_report):

@@ -12,6 +12,9 @@ MPM_ROWS = {
     "ch9-wedges": "terradyn.mpm.report_rows:wedges",
     "fig-9-1": "terradyn.mpm.report_rows:footing",
     "fig-6-8": "terradyn.mpm.report_rows:wheel_force_slip",
+    "fig-4-1": "terradyn.mpm.report_rows_ch48:alpha_map",
+    "ch4-plate-depth": "terradyn.mpm.report_rows_ch48:plate_depth",
+    "ch8-high-speed": "terradyn.mpm.report_rows_ch48:high_speed",
 }
 
 

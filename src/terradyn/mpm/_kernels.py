@@ -293,17 +293,29 @@ def g2p(
         gdot[p] = out[4]
 
 
+@njit(cache=True, inline="always")
+def _side_key(npx, npz):
+    """Which side of a body a particle with outward normal (npx, npz) lies on, for
+    :func:`patch_divergence`: 1 / 2 above / below where the normal is mostly vertical, 3 / 4 to +x / -x
+    where it is mostly horizontal. Mirroring x (or z) maps each key to one key, so a mirrored case
+    groups its particles as the original does."""
+    if abs(npz) >= abs(npx):
+        return 1 if npz > 0.0 else 2
+    return 3 if npx > 0.0 else 4
+
+
 @njit(cache=True, fastmath=True, parallel=True)
 def patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, keys, div_bar):
     """Patch-averaged velocity divergence of every particle into ``div_bar`` (N,) [1/s].
 
-    A patch is the node-centred cell of the particle's nearest grid node; near a body (``geo[p]`` has
-    a normal) the particles of a patch are further split by the side of the body their normal points
-    to, so the two grain fields of a thin body are not mixed. Within a patch the divergence
+    A patch is the node-centred cell of the particle's nearest grid node; where that node is in the
+    body's band (``node``) and the particle has a body normal (``geo[p]``), the particles of a patch
+    are further split by the side of the body their normal points to (:func:`_side_key`), so the two
+    grain fields of a thin body are not mixed. Within a patch the divergence
     ``tr L_p`` (read from the grid as in :func:`g2p`) is averaged with the particle volumes as
     weights. This is the B-bar idea for material points (Coombs et al. 2018, Comput. Methods Appl.
     Mech. Engrg. 333, 1-21, doi:10.1016/j.cma.2018.01.010): one volumetric rate per patch instead of
-    one per point, which frees isochoric plastic flow from volumetric locking. ``patch`` (nx, nz, 3,
+    one per point, which frees isochoric plastic flow from volumetric locking. ``patch`` (nx, nz, 5,
     2) and ``keys`` (N, 3) int64 are scratch.
     """
     n = pos.shape[0]
@@ -329,9 +341,12 @@ def patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch
                 else:
                     div += grid_vel[i, j, 0] * dwx[a] * wz[b] + grid_vel[i, j, 1] * wx[a] * dwz[b]
         div_bar[p] = div
-        keys[p, 0] = bi + 1  # the nearest node (the B-spline offset of node bi + 1 is below half a cell)
-        keys[p, 1] = bj + 1
-        keys[p, 2] = 0 if not near else (1 if npz > 0.0 or (npz == 0.0 and npx > 0.0) else 2)
+        ki = bi + 1  # the nearest node (the B-spline offset of node bi + 1 is below half a cell)
+        kj = bj + 1
+        keys[p, 0] = ki
+        keys[p, 1] = kj
+        # split by side only in the body's band, where the two grain fields differ
+        keys[p, 2] = _side_key(npx, npz) if near and node[ki, kj, 2] < 0.5 * _FAR else 0
     for p in range(n):
         cell = patch[keys[p, 0], keys[p, 1], keys[p, 2]]
         cell[0] += vol[p] * div_bar[p]
@@ -420,7 +435,7 @@ def advance(
     box = (0, -1, 0, -1)
     node[:, :, 2] = _FAR  # no band yet (and no stale two-field state for g2p)
     n_patch = grid_mass.shape[0] if averaged else 0
-    patch = np.zeros((n_patch, grid_mass.shape[1] if averaged else 0, 3, 2))
+    patch = np.zeros((n_patch, grid_mass.shape[1] if averaged else 0, 5, 2))
     div_bar = np.empty(pos.shape[0] if averaged else 0)
     keys = np.empty((pos.shape[0] if averaged else 0, 3), dtype=np.int64)
     if not sides:
