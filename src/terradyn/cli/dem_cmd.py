@@ -313,6 +313,9 @@ def wheel(
     record_interval: float | None = typer.Option(
         None, "--record-interval", help="Simulated time [s] per history row (default duration/100)."
     ),
+    checkpoint: str | None = DEMOptions.checkpoint,
+    checkpoint_interval: float = DEMOptions.checkpoint_interval,
+    resume: bool = DEMOptions.resume,
     series: str | None = DEMOptions.series,
     snapshots: str | None = DEMOptions.snapshots,
     snapshot_interval: float | None = typer.Option(
@@ -334,7 +337,8 @@ def wheel(
     body = _mpm_wheel(shape, width, sizes)
     out_path = out_file("--out", out)
     series_path = out_file("--series", series, (".csv",))
-    outs = FieldOutputs(snapshots=snapshots, fields=fields, animate=animate, frames=frames, checkpoint=None)
+    ckpt = check_checkpoint(checkpoint, resume)
+    outs = FieldOutputs(snapshots=snapshots, fields=fields, animate=animate, frames=frames, checkpoint=ckpt)
     if bed not in ("slab", "3d"):
         raise InputError("--bed", bed, "slab or 3d")
     if packing not in ("dense", "loose"):
@@ -353,7 +357,8 @@ def wheel(
     load_lammps()
     with _interruptible(outs), fraction_progress("DEM wheel", "s") as bar:
         res = run_wheel(body, mat, load=load, omega=omega, slip=slip, duration=duration, kind=bed,
-                        packing=packing, grain_diameter=d, record_interval=record_interval,
+                        packing=packing, grain_diameter=d, seed=seed, record_interval=record_interval,
+                        checkpoint_path=ckpt, checkpoint_interval=checkpoint_interval, resume=resume,
                         progress=bar, **outs.library(snap_every))  # fmt: skip
     from ..dem._lammps import mpi_rank
 
@@ -362,6 +367,11 @@ def wheel(
     if series_path is not None:
         atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
     outs.write(res, f"DEM {shape} wheel in {mat.name}, slip {slip:g}")
+    if ckpt is not None:  # the run finished: its checkpoint is no longer needed
+        from ..dem.runs import checkpoint_files
+
+        for p in checkpoint_files(ckpt):
+            p.unlink(missing_ok=True)
     emit({k: res.summary[k] for k in WHEEL_KEYS if k in res.summary}, fmt, out_path)
 
 

@@ -316,12 +316,15 @@ def run_intrusion(
         "material": material.name,
         "dem": _dem_dict(bed),
         "box": list(bed.box),
+        "newton": newton_setting(lmp),
     }
     _body_fixes(lmp, params)
     history: dict[str, list[float]] = {k: [] for k in HISTORY_KEYS}
     try:
         recorder = _recorder(body, params, snapshot_dir, snapshot_interval, frame_count)
-        return _loop(lmp, params, history, 0, ckpt, checkpoint_interval, progress, stop_after_rows, recorder)
+        final = run_chunks(lmp, params, history, 0, ckpt, checkpoint_interval, progress, stop_after_rows,
+                           recorder, INTRUSION_HOOKS)  # fmt: skip
+        return _result(params, history, recorder, final)
     finally:
         bed.lmp = None
         lmp.close()
@@ -362,30 +365,74 @@ def _recorder(body: Body, params: dict[str, Any], snapshot_dir: str | Path | Non
 def _resume(ckpt: Path, interval: float, progress: Callable[[float, float], None] | None,
             stop_after_rows: int | None, body: Body,
             outputs: dict[str, Any]) -> DEMIntrusionResult:  # fmt: skip
+    params, history, step, frames = read_checkpoint(ckpt, "dem intrusion")
+    lmp = restore_lammps(ckpt, params)
+    try:
+        _body_fixes(lmp, params)
+        recorder = _recorder(body, params, **outputs)
+        recorder.frames = frames if recorder.frame_every > 0 else []
+        final = run_chunks(lmp, params, history, step, ckpt, interval, progress, stop_after_rows, recorder,
+                           INTRUSION_HOOKS)  # fmt: skip
+        return _result(params, history, recorder, final)
+    finally:
+        lmp.close()
+
+
+def read_checkpoint(ckpt: Path, run: str) -> tuple[dict[str, Any], dict[str, list[float]], int,
+                                                   list[dict[str, np.ndarray]]]:  # fmt: skip
+    """Parameters, history, step and animation frames of the checkpoint of a ``run`` ("dem intrusion",
+    "dem wheel") at ``ckpt``; one :class:`InputError` line if it is missing, unreadable or another
+    kind of run's."""
     _restart, side, frames_path = checkpoint_files(ckpt)
+    if not ckpt.is_file():
+        raise InputError("checkpoint_path", str(ckpt), "an existing checkpoint with resume",
+                         "no such file: run without resume to start")  # fmt: skip
     try:
         state = json.loads(side.read_text(encoding="utf-8"))
         params, history, step = state["params"], state["history"], int(state["step"])
         frames = _load_frames(frames_path)
-    except (OSError, ValueError, KeyError) as exc:
+    except (OSError, ValueError, KeyError, TypeError) as exc:
         raise InputError("checkpoint", str(ckpt), "a terradyn DEM checkpoint with its .json file",
                          " ".join(str(exc).split())[:100]) from None  # fmt: skip
+    saved = params.get("run", "dem intrusion") if isinstance(params, dict) else None
+    if saved != run:
+        raise InputError("checkpoint", str(ckpt), f"a checkpoint of a {run} run", f"it holds a {saved} run")
+    return params, history, step, frames
+
+
+def newton_setting(lmp: Any) -> list[int]:
+    """LAMMPS's ``newton`` pair and bond settings (1 on, 0 off). A bed poured here runs with
+    ``newton off``, one read from a restart file with the default pair setting ``on``; the two sum
+    ghost-pair forces in another order, so a resume restores the setting of the run it continues."""
+    return [int(lmp.extract_setting("newton_pair")), int(lmp.extract_setting("newton_bond"))]
+
+
+def restore_lammps(ckpt: Path, params: dict[str, Any]) -> Any:
+    """A LAMMPS instance holding the checkpoint's restart file, with the grains' interactions
+    re-issued (``pair granular`` comes back from a restart file with a zero cut-off; re-issuing it
+    unchanged keeps the contact histories). The body's fixes are the caller's to re-issue."""
     lmp = new_lammps()
     try:
         lmp.command("atom_modify map array")
         lmp.command(f"read_restart {ckpt}")
+        pair, bond = params.get("newton", (None, None))
+        if pair is not None:  # a restart file does not carry the pair setting (see newton_setting)
+            lmp.command(f"newton {'on' if pair else 'off'} {'on' if bond else 'off'}")
+    except Exception as exc:  # LAMMPS raises a bare Exception for a damaged file
+        lmp.close()
+        raise InputError("checkpoint", str(ckpt), "a LAMMPS restart file written by terradyn",
+                         " ".join(str(exc).split())[:100]) from None  # fmt: skip
+    try:
         from ..materials import DEMParameters
 
         dem = DEMParameters(**{k: v for k, v in params["dem"].items()})
         _bed.setup_interactions(lmp, tuple(params["box"]), dem, BedKind(params["bed_kind"]), pair=True,
                                 friction=dem.friction, rolling=dem.rolling_friction,
                                 gravity=params.get("gravity", 9.81))  # fmt: skip
-        _body_fixes(lmp, params)
-        recorder = _recorder(body, params, **outputs)
-        recorder.frames = frames if recorder.frame_every > 0 else []
-        return _loop(lmp, params, history, step, ckpt, interval, progress, stop_after_rows, recorder)
-    finally:
+    except BaseException:
         lmp.close()
+        raise
+    return lmp
 
 
 def _pose(params: dict[str, Any], time_s: float) -> tuple[float, float, float]:
@@ -408,10 +455,26 @@ def _record_row(lmp: Any, params: dict[str, Any], history: dict[str, list[float]
         history[key].append(value)
 
 
-def _loop(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], step: int, ckpt: Path | None,
-          interval: float, progress: Callable[[float, float], None] | None,
-          stop_after_rows: int | None, recorder: FieldRecorder) -> DEMIntrusionResult:  # fmt: skip
-    """Chunks of ``chunk`` steps, one history row each.
+@dataclass(frozen=True)
+class RunHooks:
+    """What a chunked run records: ``record_row(lmp, params, history, step)`` appends the row of the
+    chunk that ended at ``step``; ``pose(lmp, params, time_s)`` is the body's (x, z, theta) for
+    snapshots and frames; ``progress_key`` the history column the progress callback is given."""
+
+    record_row: Callable[[Any, dict[str, Any], dict[str, list[float]], int], None]
+    pose: Callable[[Any, dict[str, Any], float], tuple[float, float, float]]
+    progress_key: str
+
+
+INTRUSION_HOOKS = RunHooks(_record_row, lambda lmp, params, t: _pose(params, t), "depth_m")
+
+
+def run_chunks(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], step: int,
+               ckpt: Path | None, interval: float, progress: Callable[[float, float], None] | None,
+               stop_after_rows: int | None, recorder: FieldRecorder,
+               hooks: RunHooks) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:  # fmt: skip
+    """Chunks of ``params["chunk"]`` steps up to ``params["rows"]`` rows, one history row each;
+    returns the final grain fields and frame (:meth:`FieldRecorder.final`).
 
     Every chunk boundary has one LAMMPS setup (:func:`_boundary`) before the next chunk's own, and
     snapshots, frames and checkpoints are taken right after it: a run that writes them follows the
@@ -432,7 +495,7 @@ def _loop(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], ste
             _boundary(lmp)
             boundary_at = step
         if row > 0 and recorded != row:
-            recorder.row(lmp, row, step, step * dt, _pose(params, step * dt))
+            recorder.row(lmp, row, step, step * dt, hooks.pose(lmp, params, step * dt))
             recorded = row
 
     try:
@@ -443,15 +506,15 @@ def _loop(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], ste
                 last_save = time.perf_counter()
             lmp.command(f"run {chunk}")
             step += chunk
-            _record_row(lmp, params, history, step)
+            hooks.record_row(lmp, params, history, step)
             row += 1
             done_here += 1
             if progress is not None:
-                progress(history["depth_m"][-1], 0.3 + 0.7 * row / rows)
+                progress(history[hooks.progress_key][-1], 0.3 + 0.7 * row / rows)
             if stop_after_rows is not None and done_here >= stop_after_rows and row < rows:
                 raise KeyboardInterrupt
         settle_boundary()
-        final = recorder.final(lmp, step, step * dt, _pose(params, step * dt))
+        final = recorder.final(lmp, step, step * dt, hooks.pose(lmp, params, step * dt))
     except KeyboardInterrupt as exc:
         # the rows recorded say where the run is; an interrupt that lands between the end of a chunk
         # and its row records that row first
@@ -459,7 +522,7 @@ def _loop(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], ste
         step = step0 + (row - row0) * chunk
         if int(lmp.extract_global("ntimestep")) == step + chunk:
             step += chunk
-            _record_row(lmp, params, history, step)
+            hooks.record_row(lmp, params, history, step)
             row += 1
         if ckpt is not None:
             settle_boundary()
@@ -467,7 +530,7 @@ def _loop(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], ste
             exc.checkpoint_path = ckpt  # type: ignore[attr-defined]
         exc.time_s = step * dt  # type: ignore[attr-defined]
         raise
-    return _result(params, history, recorder, final)
+    return final
 
 
 def _result(params: dict[str, Any], history: dict[str, list[float]], recorder: FieldRecorder,

@@ -9,11 +9,21 @@ drawbar pull = horizontal soil force (positive forward), drive torque = -(soil t
 sinkage = depth of the lowest point of the rim below the undisturbed surface. In a slab bed the wheel
 spans the slab, the load is applied per unit width (``load * slab / width``) and forces and torques are
 reported for the wheel's width.
+
+Checkpoints and ``resume`` are those of :func:`terradyn.dem.run_intrusion` (the same chunked loop,
+:func:`terradyn.dem.runs.run_chunks`): a resumed run repeats the uninterrupted one bit for bit on one
+rank. The restart file keeps the atoms (positions, velocities, spins, masses, the ``body`` group) and
+the contact histories, not the fixes; ``fix rigid`` is re-issued after it with the same arguments.
+That is exact because ``fix rigid`` (its default ``reinit yes``) recomputes the body's centre of mass,
+inertia, orientation and velocities from its atoms at the start of every ``run``, in the uninterrupted
+run too, and the restart file holds those atoms exactly as the uninterrupted run's next ``run``
+finds them; its forces and torques are recomputed by the setup of that ``run`` as every chunk's are.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -28,7 +38,16 @@ from ..materials import Material
 from .bed import BODY_TYPE, Bed, BedKind, BedSpec, Packing, prepare_bed
 from .fields import FieldRecorder, frame_every, rows_between
 from .intruders import body_spheres, rotated_extent
-from .runs import _add_atoms, _start_gap
+from .runs import (
+    RunHooks,
+    _add_atoms,
+    _dem_dict,
+    _start_gap,
+    newton_setting,
+    read_checkpoint,
+    restore_lammps,
+    run_chunks,
+)
 
 __all__ = ["DEMWheelResult", "default_wheel_bed", "run_wheel"]
 
@@ -87,9 +106,14 @@ def run_wheel(
     kind: BedKind | str = BedKind.SLAB,
     packing: Packing | str = Packing.DENSE,
     grain_diameter: float | None = None,
+    seed: int = 12345,
     record_interval: float | None = None,
     gravity: float = 9.81,
+    checkpoint_path: str | Path | None = None,
+    checkpoint_interval: float = 60.0,
+    resume: bool = False,
     progress: Callable[[float, float], None] | None = None,
+    stop_after_rows: int | None = None,
     snapshot_dir: str | Path | None = None,
     snapshot_interval: float | None = None,
     frame_count: int = 0,
@@ -99,7 +123,13 @@ def run_wheel(
     The wheel starts at x = -travel/2 (travel = V duration) and ends near x = +travel/2. Gravity is
     that of the bed (``BedSpec.gravity``); the wheel's mass is ``load / gravity``. ``snapshot_dir``:
     per-grain NetCDF snapshots every ``snapshot_interval`` [s] (default duration / 20);
-    ``frame_count`` animation frames over the run (``result.frames``)."""
+    ``frame_count`` animation frames over the run (``result.frames``).
+
+    ``checkpoint_path``: a LAMMPS restart file and its side files (:func:`terradyn.dem.runs.checkpoint_files`)
+    written every ``checkpoint_interval`` wall-clock seconds [s] at a row boundary and when the run is
+    interrupted; ``resume=True`` continues the run saved there (refused, naming them, if the inputs
+    differ from the checkpoint's). ``stop_after_rows`` stops early (after writing a checkpoint), as an
+    interruption would; tests use it."""
     r = _radius(body)
     load = check_positive("load", load)
     omega = check_finite("omega", omega)
@@ -109,6 +139,8 @@ def run_wheel(
     if not -1.0 <= slip < 1.0:
         raise InputError("slip", slip, "a slip in [-1, 1)")
     duration = check_positive("duration", duration)
+    if record_interval is not None:
+        record_interval = check_positive("record_interval", record_interval)
     if snapshot_interval is not None:
         snapshot_interval = check_positive("snapshot_interval", snapshot_interval)
     if not isinstance(frame_count, int) or not 0 <= frame_count <= 500:
@@ -119,8 +151,16 @@ def run_wheel(
     travel = abs(velocity) * duration
     dem = material.require_dem()
     d = grain_diameter if grain_diameter is not None else dem.grain_diameter
+    inputs = _inputs(body, material, bed, load=load, omega=omega, slip=slip, duration=duration,
+                     record_interval=record_interval, kind=kind, packing=packing, grain_diameter=d,
+                     seed=seed, gravity=gravity)  # fmt: skip
+    ckpt = Path(checkpoint_path) if checkpoint_path is not None else None
+    if resume:
+        if ckpt is None:
+            raise InputError("checkpoint_path", checkpoint_path, "an existing checkpoint with resume")
+        return _resume(ckpt, inputs, body, outputs, checkpoint_interval, progress, stop_after_rows)
     if bed is None:
-        spec = default_wheel_bed(body, travel=travel, grain_diameter=d, kind=kind, packing=packing)
+        spec = default_wheel_bed(body, travel=travel, grain_diameter=d, kind=kind, packing=packing, seed=seed)
         spec = dataclasses.replace(spec, gravity=gravity)
 
         def settle(t: float, f: float) -> None:
@@ -130,17 +170,67 @@ def run_wheel(
         bed = prepare_bed(material, spec, progress=settle)
     lmp = bed.lmp
     try:
-        return _roll(bed, body, r, load, omega, velocity, slip, duration, travel, record_interval, progress,
-                     material.name, outputs)  # fmt: skip
+        params = _place_wheel(bed, body, r, load, omega, velocity, slip, duration, travel, record_interval,
+                              material.name, inputs)  # fmt: skip
+        recorder = _recorder(params, body, outputs)
+        history: dict[str, list[float]] = {k: [] for k in WHEEL_HISTORY}
+        final = run_chunks(lmp, params, history, 0, ckpt, checkpoint_interval, progress, stop_after_rows,
+                           recorder, WHEEL_HOOKS)  # fmt: skip
+        return _result(params, history, recorder, final)
     finally:
         bed.lmp = None
         lmp.close()
 
 
-def _roll(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: float, slip: float,
-          duration: float, travel: float, record_interval: float | None,
-          progress: Callable[[float, float], None] | None, material_name: str,
-          outputs: dict[str, Any]) -> DEMWheelResult:  # fmt: skip
+def _inputs(body: Body, material: Material, bed: Bed | None, **values: Any) -> dict[str, Any]:
+    """The inputs that identify a wheel run (a resume must repeat them), as JSON loads them back.
+    The bed's preparation counts only when this call prepares it."""
+    from ..mpm.checkpoint import plain
+
+    bed_made = {k: values.pop(k) for k in ("kind", "packing", "grain_diameter", "seed", "gravity")}
+    dem = {k: v for k, v in plain(material.require_dem()).items() if k != "notes"}  # numbers only
+    out = {"run": "dem wheel", "body": plain(body), "material": material.name, "dem": dem, **values,
+           "bed": "given" if bed is not None else plain(bed_made)}  # fmt: skip
+    loaded: dict[str, Any] = json.loads(json.dumps(out, sort_keys=True))
+    return loaded
+
+
+def _check_inputs(ckpt: Path, saved: dict[str, Any], current: dict[str, Any]) -> None:
+    from ..mpm.checkpoint import input_differences
+
+    current = dict(current)
+    if saved.get("bed") == "given":  # a bed given to the first call: nothing to compare
+        current["bed"] = "given"
+    diffs = input_differences(saved, current)
+    if diffs:
+        more = f" and {len(diffs) - 4} more" if len(diffs) > 4 else ""
+        raise InputError("checkpoint_path", str(ckpt), "a checkpoint of a run with the same inputs",
+                         f"it differs in {'; '.join(diffs[:4])}{more}; rerun with the checkpoint's "
+                         "inputs or remove the file")  # fmt: skip
+
+
+def _resume(ckpt: Path, inputs: dict[str, Any], body: Body, outputs: dict[str, Any], interval: float,
+            progress: Callable[[float, float], None] | None,
+            stop_after_rows: int | None) -> DEMWheelResult:  # fmt: skip
+    params, history, step, frames = read_checkpoint(ckpt, "dem wheel")
+    _check_inputs(ckpt, params["inputs"], inputs)
+    lmp = restore_lammps(ckpt, params)
+    try:
+        _wheel_fixes(lmp, params)
+        recorder = _recorder(params, body, outputs)
+        recorder.frames = frames if recorder.frame_every > 0 else []
+        final = run_chunks(lmp, params, history, step, ckpt, interval, progress, stop_after_rows, recorder,
+                           WHEEL_HOOKS)  # fmt: skip
+        return _result(params, history, recorder, final)
+    finally:
+        lmp.close()
+
+
+def _place_wheel(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: float, slip: float,
+                 duration: float, travel: float, record_interval: float | None, material_name: str,
+                 inputs: dict[str, Any]) -> dict[str, Any]:  # fmt: skip
+    """Add the wheel's spheres above the bed, spinning and moving forward; its fixes; the run's
+    parameters (what a resume needs)."""
     lmp, d, dt = bed.lmp, bed.dem.grain_diameter, bed.dt
     x_start = -0.5 * travel
     if x_start - r < bed.box[0] + 2 * d or 0.5 * travel + r > bed.box[1] - 2 * d:
@@ -175,6 +265,43 @@ def _roll(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: f
         f"variable td_vx atom {velocity:.17g}+{omega:.17g}*(z-({zc:.17g}))",
         f"variable td_vz atom -{omega:.17g}*(x-({xc:.17g}))",
         "velocity body set v_td_vx 0.0 v_td_vz units box",
+    ):
+        lmp.command(line)
+    params: dict[str, Any] = {
+        "run": "dem wheel",
+        "inputs": inputs,
+        "chunk": chunk,
+        "rows": rows,
+        "dt": dt,
+        "radius": r,
+        "omega": omega,
+        "slip": slip,
+        "load": load,
+        "velocity": velocity,
+        "duration": duration,
+        "scale": scale,
+        "surface": bed.surface,
+        "gravity": g,
+        "grain_diameter": d,
+        "grain_count": n0,
+        "material": material_name,
+        "dem": _dem_dict(bed),
+        "box": list(bed.box),
+        "newton": newton_setting(lmp),
+        "bed_kind": bed.spec.kind.value,
+        "bed_thickness": bed.thickness,
+        "bed": bed.summary(),
+    }
+    _wheel_fixes(lmp, params)
+    return params
+
+
+def _wheel_fixes(lmp: Any, params: dict[str, Any]) -> None:
+    """The wheel's weight, its rigid-body integration with only z free, and the soil force and torque
+    averaging (fresh runs, and after a restart: LAMMPS restart files keep no fixes, computes or
+    variables)."""
+    g, k = params["gravity"], params["chunk"]
+    for line in (
         f"fix td_wgrav body gravity {g:.17g} vector 0 0 -1",
         "fix td_rigid body rigid single force * off off on torque * off off off",
         "compute td_tqa body property/atom tqy",
@@ -184,75 +311,74 @@ def _roll(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: f
         # soil forces only: the atoms' forces less their weight
         f"variable td_fz atom fz+mass*{g:.17g}",
         "compute td_f body reduce sum fx v_td_fz v_td_tq",
-        f"fix td_avg all ave/time 1 {chunk} {chunk} c_td_f[1] c_td_f[2] c_td_f[3]",
+        f"fix td_avg all ave/time 1 {k} {k} c_td_f[1] c_td_f[2] c_td_f[3]",
     ):
         lmp.command(line)
-    hist: dict[str, list[float]] = {k: [] for k in WHEEL_HISTORY}
-    recorder = _recorder(bed, body, outputs, chunk * dt, rows, duration, material_name, velocity, omega)
-    recorder.prepare(lmp)
 
-    def pose(t: float) -> tuple[float, float, float]:
-        x = float(lmp.extract_variable("td_xr"))
-        return (x, float(lmp.extract_variable("td_zr")) - bed.surface, omega * t)
 
-    step = 0
-    for row in range(rows):
-        # one setup at every chunk boundary, snapshots right after it (they do not perturb the run)
-        lmp.command("run 0 post no")
-        if row > 0:
-            recorder.row(lmp, row, step, step * dt, pose(step * dt))
-        lmp.command(f"run {chunk}")
-        step += chunk
-        fx = float(lmp.extract_fix("td_avg", 0, 1, 0)) * scale
-        fz = float(lmp.extract_fix("td_avg", 0, 1, 1)) * scale
-        ty = float(lmp.extract_fix("td_avg", 0, 1, 2)) * scale
-        x = float(lmp.extract_variable("td_xr"))
-        z = float(lmp.extract_variable("td_zr")) - bed.surface
-        values = (step * dt, x, z, r - z, fx, fz, -ty)
-        for key, value in zip(WHEEL_HISTORY, values, strict=True):
-            hist[key].append(value)
-        if progress is not None:
-            progress(step * dt, 0.3 + 0.7 * (row + 1) / rows)
-    lmp.command("run 0 post no")
-    recorder.row(lmp, rows, step, step * dt, pose(step * dt))
-    final = recorder.final(lmp, step, step * dt, pose(step * dt))
-    h = {k: np.asarray(v) for k, v in hist.items()}
-    late = h["time_s"] > 0.5 * duration
+def _wheel_pose(lmp: Any, params: dict[str, Any], time_s: float) -> tuple[float, float, float]:
+    """Axle x, z (terradyn's frame) and the wheel's rotation about +y at ``time_s``."""
+    x = float(lmp.extract_variable("td_xr"))
+    return (x, float(lmp.extract_variable("td_zr")) - params["surface"], params["omega"] * time_s)
+
+
+def _wheel_row(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], step: int) -> None:
+    """The history row of the chunk that ended at ``step``: soil forces averaged over it, the axle's
+    position at its end."""
+    scale = params["scale"]
+    fx = float(lmp.extract_fix("td_avg", 0, 1, 0)) * scale
+    fz = float(lmp.extract_fix("td_avg", 0, 1, 1)) * scale
+    ty = float(lmp.extract_fix("td_avg", 0, 1, 2)) * scale
+    x, z, _theta = _wheel_pose(lmp, params, step * params["dt"])
+    values = (step * params["dt"], x, z, params["radius"] - z, fx, fz, -ty)
+    for key, value in zip(WHEEL_HISTORY, values, strict=True):
+        history[key].append(value)
+
+
+WHEEL_HOOKS = RunHooks(_wheel_row, _wheel_pose, "time_s")
+
+
+def _result(params: dict[str, Any], history: dict[str, list[float]], recorder: FieldRecorder,
+            final: tuple[dict[str, np.ndarray], dict[str, np.ndarray]]) -> DEMWheelResult:  # fmt: skip
+    h = {k: np.asarray(v, dtype=float) for k, v in history.items()}
+    late = h["time_s"] > 0.5 * params["duration"]
     summary = {
         "sinkage_m": float(h["sinkage_m"][late].mean()),
         "drawbar_pull_N": float(h["drawbar_pull_N"][late].mean()),
         "drive_torque_Nm": float(h["drive_torque_Nm"][late].mean()),
         "vertical_force_N": float(h["vertical_force_N"][late].mean()),
-        "slip": slip,
-        "load_N": load,
-        "omega_rad_s": omega,
-        "forward_velocity_m_s": velocity,
-        "grain_count": n0,
-        "material": material_name,
+        "slip": params["slip"],
+        "load_N": params["load"],
+        "omega_rad_s": params["omega"],
+        "forward_velocity_m_s": params["velocity"],
+        "grain_count": params["grain_count"],
+        "material": params["material"],
     }
-    return DEMWheelResult(h, summary, bed.summary(), final_particles=final[0], frames=list(recorder.frames),
-                          final_frame=final[1], snapshots=list(recorder.written))  # fmt: skip
+    return DEMWheelResult(h, summary, dict(params["bed"]), final_particles=final[0],
+                          frames=list(recorder.frames), final_frame=final[1],
+                          snapshots=list(recorder.written))  # fmt: skip
 
 
-def _recorder(bed: Bed, body: Body, outputs: dict[str, Any], row_time: float, rows: int, duration: float,
-              material_name: str, velocity: float, omega: float) -> FieldRecorder:  # fmt: skip
-    d = bed.dem.grain_diameter
-    mid = 0.5 * (bed.box[2] + bed.box[3])
+def _recorder(params: dict[str, Any], body: Body, outputs: dict[str, Any]) -> FieldRecorder:
+    d, box = params["grain_diameter"], params["box"]
+    mid = 0.5 * (box[2] + box[3])
     folder = outputs["snapshot_dir"]
     attrs = {
         "run": "dem wheel",
-        "material": material_name,
+        "material": params["material"],
         "grain_diameter_m": d,
-        "bed_kind": bed.spec.kind.value,
-        "bed_thickness_m": bed.thickness,
-        "forward_velocity_m_s": velocity,
-        "omega_rad_s": omega,
-        "gravity_m_s2": bed.spec.gravity,
+        "bed_kind": params["bed_kind"],
+        "bed_thickness_m": params["bed_thickness"],
+        "forward_velocity_m_s": params["velocity"],
+        "omega_rad_s": params["omega"],
+        "gravity_m_s2": params["gravity"],
         "body_pose": "axle x, z [m] and wheel rotation theta about +y [rad]",
     }
-    every = rows_between(outputs["snapshot_interval"], row_time, duration / 20.0) if folder is not None else 0
+    row_time, default = params["chunk"] * params["dt"], params["duration"] / 20.0
+    every = rows_between(outputs["snapshot_interval"], row_time, default) if folder is not None else 0
     return FieldRecorder(
-        body, bed.surface, d, snapshot_dir=folder, snapshot_every=every,
-        frame_every=frame_every(outputs["frame_count"], rows),
-        y_slice=None if bed.spec.kind is BedKind.SLAB else (mid - 2.0 * d, mid + 2.0 * d), attrs=attrs,
+        body, params["surface"], d, snapshot_dir=folder, snapshot_every=every,
+        frame_every=frame_every(outputs["frame_count"], params["rows"]),
+        y_slice=None if params["bed_kind"] == BedKind.SLAB.value else (mid - 2.0 * d, mid + 2.0 * d),
+        attrs=attrs,
     )  # fmt: skip
