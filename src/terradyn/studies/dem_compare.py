@@ -23,7 +23,7 @@ from ..geometry import Plate
 from ..materials import Material
 from ..results import TableResult
 from ..rft import li2013_alpha_material
-from .mpm_compare import _rft_on_body
+from .mpm_compare import _rft_on_body, style_alpha_axes
 from .registry import StudyOutput, _Params, register_study
 
 __all__ = ["dem_alpha_map", "dem_plate_body", "window_alpha"]
@@ -214,21 +214,7 @@ def _figure(t: TableResult, p: DEMAlphaParams, angles: Sequence[float], mpm: Any
                 m = mpm[np.isclose(mpm["angle_deg"], a)]
                 ax.plot(m["direction_deg"], m[f"alpha_{comp}_mpm_N_per_m3"] / 1e6, "s", color=colour,
                         mfc="none", ms=8)  # fmt: skip
-    for ax, comp in zip(axes, ("z", "x"), strict=True):
-        ax.set_xlabel(r"direction of motion $\gamma$ [deg below +x]")
-        ax.set_ylabel(rf"$\alpha_{comp}$ [N/cm$^3$] (= N/m$^3$ $\times$ 10$^{{-6}}$)")
-        ax.axhline(0.0, color="k", lw=0.5)
-        ax.set_xlim(0.0, 180.0)
-        ax.set_xticks(np.arange(0.0, 181.0, 30.0))
-        ax.grid(True, alpha=0.35)
-    handles = [
-        Line2D([], [], color=f"C{k}", lw=2, label=f"plate angle {a:g} deg") for k, a in enumerate(angles)
-    ]
-    handles += [
-        Line2D([], [], color="0.3", marker="o", mec="k", ls="none", label="DEM (bar: scatter in window)"),
-        Line2D([], [], color="0.3", ls="--", label="RFT on the DEM plate (with thickness)"),
-        Line2D([], [], color="0.3", lw=0.8, label="RFT, thin plate"),
-    ]
+    handles = style_alpha_axes(axes, angles, "DEM", "DEM (bar: scatter in window)")
     if mpm is not None:
         mpm_handle = Line2D([], [], color="0.3", marker="s", mfc="none", ls="none", label="MPM (mpm-alpha)")
         handles.append(mpm_handle)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from pydantic import Field
@@ -98,6 +99,27 @@ def mpm_alpha_map(
         "rft_body": "RFT summed over the faces of the plate as MPM resolves it (thickness above)",
     }
     return TableResult(cols, meta)
+
+
+def style_alpha_axes(axes: Any, angles: Sequence[float], model: str, marker_label: str) -> list[Any]:
+    """Axes of an alpha map (alpha_z, alpha_x against direction) and the legend handles shared by the
+    MPM and DEM maps: one colour per plate angle, the model's markers, RFT dashed (on the plate as
+    ``model`` resolves it) and thin (the thin-plate law)."""
+    from matplotlib.lines import Line2D
+
+    for ax, comp in zip(axes, ("z", "x"), strict=True):
+        ax.set_xlabel(r"direction of motion $\gamma$ [deg below +x]")
+        ax.set_ylabel(rf"$\alpha_{comp}$ [N/cm$^3$] (= N/m$^3$ $\times$ 10$^{{-6}}$)")
+        ax.axhline(0.0, color="k", lw=0.5)
+        ax.set_xlim(0.0, 180.0)
+        ax.set_xticks(np.arange(0.0, 181.0, 30.0))
+        ax.grid(True, alpha=0.35)
+    return [
+        *(Line2D([], [], color=f"C{k}", lw=2, label=f"plate angle {a:g} deg") for k, a in enumerate(angles)),
+        Line2D([], [], color="0.3", marker="o", mec="k", ls="none", label=marker_label),
+        Line2D([], [], color="0.3", ls="--", label=f"RFT on the {model} plate (with thickness)"),
+        Line2D([], [], color="0.3", lw=0.8, label="RFT, thin plate"),
+    ]
 
 
 def _rft_on_body(body: Body, mat, angle_deg: float, direction_deg: float, depth: float):
@@ -234,8 +256,6 @@ def _run_alpha(p: MPMAlphaParams) -> StudyOutput:
     body = Plate(md["plate_length_m"], md["plate_width_m"], thickness=md["mpm_plate_thickness_m"])
     norm = md["plate_length_m"] * md["plate_width_m"] * md["depth_m"]
     gam = np.linspace(1.0, 179.0, 90)
-    from matplotlib.lines import Line2D
-
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.6), sharex=True, layout="constrained")
     for k, a in enumerate(angles):
         colour = f"C{k}"
@@ -253,21 +273,7 @@ def _run_alpha(p: MPMAlphaParams) -> StudyOutput:
                 color=colour,
                 mec="k",
             )
-    for ax, comp in zip(axes, ("z", "x"), strict=True):
-        ax.set_xlabel(r"direction of motion $\gamma$ [deg below +x]")
-        ax.set_ylabel(rf"$\alpha_{comp}$ [N/cm$^3$] (= N/m$^3$ $\times$ 10$^{{-6}}$)")
-        ax.axhline(0.0, color="k", lw=0.5)
-        ax.set_xlim(0.0, 180.0)
-        ax.set_xticks(np.arange(0.0, 181.0, 30.0))
-        ax.grid(True, alpha=0.35)
-    handles = [
-        Line2D([], [], color=f"C{k}", lw=2, label=f"plate angle {a:g} deg") for k, a in enumerate(angles)
-    ]
-    handles += [
-        Line2D([], [], color="0.3", marker="o", mec="k", ls="none", label="MPM"),
-        Line2D([], [], color="0.3", ls="--", label="RFT on the MPM plate (with thickness)"),
-        Line2D([], [], color="0.3", lw=0.8, label="RFT, thin plate"),
-    ]
+    handles = style_alpha_axes(axes, angles, "MPM", "MPM")
     fig.legend(handles=handles, loc="outside lower center", ncols=min(len(handles), 4), fontsize=8)
     fig.suptitle(
         f"Plate stress per depth, MPM (cell {cell * 1e3:.3g} mm, {p.speed_m_s:g} m/s) vs RFT, {mat.name}"
