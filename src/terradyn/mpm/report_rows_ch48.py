@@ -121,8 +121,8 @@ def alpha_map(quick: bool) -> ItemOutput:
     out.findings.append(
         Finding(
             f"{len(rows)} cases: MPM / RFT alpha_z {min(ratios):.3f} to {max(ratios):.3f}; one scale factor "
-            f"for both components {scale:.3f}, rms shape difference after it {shape:.1%} (the map's shape "
-            "agrees when this is small; the scale is the two media's strength ratio, docs/mpm.md)",
+            f"for both components {scale:.3f}, rms shape difference after it {shape:.1%} (the shape "
+            "agrees below 20 %; the scale is the two media's strength ratio, docs/mpm.md)",
             "agrees" if shape <= 0.2 else "disagrees",
         )
     )
