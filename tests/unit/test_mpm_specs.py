@@ -199,7 +199,7 @@ def test_legacy_keywords_give_the_same_intrusion_as_specs():
 WHEEL_KEYS = {"run", "load", "omega", "slip", "drive_torque", "drawbar_load", "max_omega", "inertia",
               "duration", "sink_time", "settle_time", "bed_length", "bed_depth", "frame_count", "body",
               "model", "cell_size", "cfl", "gravity", "packing", "bed_density", "particles_per_cell",
-              "walls", "contact", "volumetric", "derived"}  # fmt: skip
+              "walls", "contact", "derived"}  # fmt: skip
 
 
 def test_legacy_keywords_give_the_same_wheel_as_specs(tmp_path):

@@ -44,10 +44,10 @@ class MPMOptions:
     )
     ppc = typer.Option(2, "--particles-per-cell", help="Particles per cell along each axis.")
     volumetric = typer.Option(
-        "patch",
+        "point",
         "--volumetric",
-        help="Velocity divergence of the volume and stress update: patch (averaged over the points of a "
-        "cell, against volumetric locking; docs/mpm.md) or point (each point its own, the classical update).",
+        help="Velocity divergence of the volume and stress update: point (each point its own, the classical "
+        "update) or patch (averaged over the points of a cell, against volumetric locking; docs/mpm.md).",
     )
     packing = typer.Option("consolidated", "--packing", help="consolidated or unconsolidated bed.")
     walls = typer.Option(None, "--walls", help="Wall condition: free-slip, no-slip or frictional.")

@@ -83,7 +83,7 @@ class StripFootingResult:
     final_particles: dict[str, np.ndarray] | None = None
     final_segments: np.ndarray | None = None
     particles_per_cell: int = 2
-    volumetric: str = "patch"
+    volumetric: str = "point"
 
     def record(self) -> dict[str, Any]:
         rec: dict[str, Any] = {
