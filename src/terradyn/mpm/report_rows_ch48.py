@@ -64,6 +64,7 @@ def alpha_map(quick: bool) -> ItemOutput:
     from .. import materials
     from ..geometry import Plate
     from ..rft.li2013 import li2013_alpha_material
+    from ..studies.mpm_compare import scale_and_shape
 
     s = _ALPHA_QUICK if quick else _ALPHA_FULL
     grid = _ALPHA_GRID_QUICK if quick else _ALPHA_GRID_FULL
@@ -88,8 +89,7 @@ def alpha_map(quick: bool) -> ItemOutput:
         )
     m = np.array([[r["alpha_x_mpm_N_per_m3"], r["alpha_z_mpm_N_per_m3"]] for r in rows]).ravel()
     f = np.array([[r["alpha_x_rft_N_per_m3"], r["alpha_z_rft_N_per_m3"]] for r in rows]).ravel()
-    scale = float(np.dot(m, f) / np.dot(f, f))
-    shape = float(np.sqrt(np.mean((m - scale * f) ** 2)) / np.sqrt(np.mean((scale * f) ** 2)))
+    scale, shape = scale_and_shape(m, f)
     ratios = [r["alpha_z_mpm_N_per_m3"] / r["alpha_z_rft_N_per_m3"] for r in rows]
 
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.4), layout="constrained")

@@ -23,7 +23,7 @@ from ..geometry import Plate
 from ..materials import Material
 from ..results import TableResult
 from ..rft import li2013_alpha_material
-from .mpm_compare import _rft_on_body, style_alpha_axes
+from .mpm_compare import _rft_on_body, alpha_scale_and_shape, style_alpha_axes
 from .registry import StudyOutput, _Params, register_study
 
 __all__ = ["dem_alpha_map", "dem_plate_body", "window_alpha"]
@@ -163,16 +163,6 @@ class DEMAlphaParams(_Params):
     mpm_csv: str | None = Field(None, description="An mpm_alpha.csv (study mpm-alpha) to draw beside.")
 
 
-def _fit(c: dict[str, np.ndarray], kind: str) -> tuple[float, float]:
-    """One scale factor fitted to both components of DEM against RFT ``kind`` and the rms difference
-    left after it relative to the scaled RFT values (the summary of ``mpm-alpha``, for DEM)."""
-    m_all = np.concatenate([c["alpha_x_dem_N_per_m3"], c["alpha_z_dem_N_per_m3"]])
-    r_all = np.concatenate([c[f"alpha_x_{kind}_N_per_m3"], c[f"alpha_z_{kind}_N_per_m3"]])
-    scale = float(np.dot(m_all, r_all) / np.dot(r_all, r_all))
-    resid = np.sqrt(np.mean((m_all - scale * r_all) ** 2)) / np.sqrt(np.mean((scale * r_all) ** 2))
-    return scale, float(resid)
-
-
 def _read_mpm(path: str | None) -> Any:
     if path is None:
         return None
@@ -249,8 +239,8 @@ def _run_alpha(p: DEMAlphaParams) -> StudyOutput:
     )
     c = t.columns
     fig = _figure(t, p, angles, mpm)
-    scale_thin, shape_thin = _fit(c, "rft")
-    scale_body, shape_body = _fit(c, "rft_body")
+    scale_thin, shape_thin = alpha_scale_and_shape(c, "dem", "rft")
+    scale_body, shape_body = alpha_scale_and_shape(c, "dem", "rft_body")
     rz = c["alpha_z_rft_N_per_m3"]
     ratio = c["alpha_z_dem_N_per_m3"] / np.where(rz != 0, rz, np.nan)
     summary = [

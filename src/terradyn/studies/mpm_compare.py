@@ -122,6 +122,22 @@ def style_alpha_axes(axes: Any, angles: Sequence[float], model: str, marker_labe
     ]
 
 
+def scale_and_shape(model: np.ndarray, rft: np.ndarray) -> tuple[float, float]:
+    """One scale factor (RFT's material constant zeta) fitted by least squares to ``model`` against
+    ``rft`` (alpha_x and alpha_z together), and the rms difference left after it relative to the
+    scaled RFT values: the shape of the map."""
+    scale = float(np.dot(model, rft) / np.dot(rft, rft))
+    resid = np.sqrt(np.mean((model - scale * rft) ** 2)) / np.sqrt(np.mean((scale * rft) ** 2))
+    return scale, float(resid)
+
+
+def alpha_scale_and_shape(c: dict[str, np.ndarray], model: str, kind: str) -> tuple[float, float]:
+    """:func:`scale_and_shape` of an alpha-map table: columns ``alpha_{x,z}_{model}_N_per_m3``
+    against ``alpha_{x,z}_{kind}_N_per_m3``."""
+    both = [np.concatenate([c[f"alpha_x_{k}_N_per_m3"], c[f"alpha_z_{k}_N_per_m3"]]) for k in (model, kind)]
+    return scale_and_shape(both[0], both[1])
+
+
 def _rft_on_body(body: Body, mat, angle_deg: float, direction_deg: float, depth: float):
     """RFT force (fx, fz) [N] on ``body`` with its centre at ``depth`` moving along the direction."""
     from ..kinematics import Pose2D, Twist2D
@@ -278,18 +294,8 @@ def _run_alpha(p: MPMAlphaParams) -> StudyOutput:
     fig.suptitle(
         f"Plate stress per depth, MPM (cell {cell * 1e3:.3g} mm, {p.speed_m_s:g} m/s) vs RFT, {mat.name}"
     )
-    m_all = np.concatenate([c["alpha_x_mpm_N_per_m3"], c["alpha_z_mpm_N_per_m3"]])
-
-    def fit(kind: str) -> tuple[float, float]:
-        # One scale factor (RFT's material constant zeta) fitted to both components, and the rms
-        # difference left after it relative to the scaled RFT values: the shape of the map.
-        r_all = np.concatenate([c[f"alpha_x_{kind}_N_per_m3"], c[f"alpha_z_{kind}_N_per_m3"]])
-        scale = float(np.dot(m_all, r_all) / np.dot(r_all, r_all))
-        resid = np.sqrt(np.mean((m_all - scale * r_all) ** 2)) / np.sqrt(np.mean((scale * r_all) ** 2))
-        return scale, float(resid)
-
-    scale_thin, shape_thin = fit("rft")
-    scale_body, shape_body = fit("rft_body")
+    scale_thin, shape_thin = alpha_scale_and_shape(c, "mpm", "rft")
+    scale_body, shape_body = alpha_scale_and_shape(c, "mpm", "rft_body")
     rz, rr = c["alpha_z_rft_N_per_m3"], c["alpha_z_mpm_N_per_m3"]
     ratio = rr / np.where(rz != 0, rz, np.nan)
     summary = [
