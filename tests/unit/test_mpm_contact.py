@@ -218,3 +218,45 @@ def test_thin_bodies_are_not_thickened_under_two_field_contact():
     check_footprint(comp, 0.005)
     with pytest.raises(InputError, match="contact"):
         ContactScheme.coerce("sticky")
+
+
+RECT = body_segments(Plate(0.06, 0.1, thickness=0.03), 0.01)  # faces at x = +-0.03, z = +-0.015
+
+
+@pytest.mark.parametrize(
+    ("point", "normal"),
+    [
+        ((0.01, -0.015 + 1e-18), (0.0, -1.0)),  # on the bottom face (a grid node's rounding)
+        ((-0.03 + 3e-18, 0.004), (-1.0, 0.0)),  # on a side face
+        ((0.03, -0.015), (math.sqrt(0.5), -math.sqrt(0.5))),  # on a corner
+    ],
+)
+def test_a_point_on_the_outline_takes_the_outline_normal(point, normal):
+    """On the outline to rounding, the offset to the nearest point has no direction: phi is 0 and
+    the normal the outline's own (the mean of the two faces at a corner), so a mirrored point gets
+    the mirrored normal. Main took the offset's direction: a node on a face got (-0.99, 0.15)."""
+    phi, nx, nz = K.polygon_sdf(point[0], point[1], RECT)
+    assert phi == 0.0
+    assert (nx, nz) == pytest.approx(normal, abs=1e-15)
+    phi_m, nx_m, nz_m = K.polygon_sdf(-point[0], point[1], RECT)
+    assert (phi_m, nx_m, nz_m) == (0.0, -nx, nz)
+
+
+def test_a_point_close_to_a_face_takes_the_face_normal_exactly():
+    """A grain a nanometre off a face (where the projection leaves them) has the face's normal to
+    the last bit; main's normal carried rounding over phi (x component ~1e-9 here), which decided
+    the grain field of a node on the side face differently for a grain and its mirror image."""
+    for px in (0.0123456, -0.0123456, 0.0277, 0.001):
+        phi, nx, nz = K.polygon_sdf(px, -0.015 - 1.2e-9, RECT)
+        assert phi == pytest.approx(1.2e-9, rel=1e-5)
+        assert (nx, nz) == (0.0, -1.0)
+        phi, nx, nz = K.polygon_sdf(-0.03 - 1.2e-9, px * 0.5, RECT)
+        assert (nx, nz) == (-1.0, 0.0)
+
+
+def test_a_point_on_a_zero_thickness_plate_has_a_fixed_normal():
+    """The two faces of a zero-thickness plate cancel: the point gets (0, 1), not a random
+    direction."""
+    seg = body_segments(Plate(0.05, 0.1), 0.01)
+    phi, nx, nz = K.polygon_sdf(0.0101, 1e-19, seg)
+    assert (phi, nx, nz) == (0.0, 0.0, 1.0)

@@ -52,6 +52,59 @@ def _segment_offset(px, pz, x1, z1, x2, z2):
     return x1 + t * ex - px, z1 + t * ez - pz
 
 
+#: A point closer to the outline than this fraction of its nearest segment's length is on it
+#: (rounding of grid and particle coordinates is ~1e-16 of them; real gaps are far larger).
+_ON_OUTLINE = 1e-9
+
+
+@njit(cache=True, fastmath=True)
+def _inside(px, pz, seg):
+    """Even-odd test of body-frame point (px, pz) against the closed polygons ``seg``."""
+    inside = False
+    for s in range(seg.shape[0]):
+        z1 = seg[s, 1]
+        z2 = seg[s, 3]
+        if (z1 > pz) != (z2 > pz):
+            x1 = seg[s, 0]
+            xc = x1 + (pz - z1) * (seg[s, 2] - x1) / (z2 - z1)
+            if px < xc:
+                inside = not inside
+    return inside
+
+
+@njit(cache=True, fastmath=True)
+def _outline_normal(px, pz, seg, tol):
+    """Unit outward normal at a point (px, pz) on the outline: the sum of the outward normals of
+    the segments within ``tol`` [m] of it (two at a vertex), each oriented by probing which side of
+    the segment is outside. ``(0, 1)`` where they cancel (the two coincident faces of a
+    zero-thickness plate)."""
+    sx = 0.0
+    sz = 0.0
+    for s in range(seg.shape[0]):
+        x1 = seg[s, 0]
+        z1 = seg[s, 1]
+        qx, qz = _segment_offset(px, pz, x1, z1, seg[s, 2], seg[s, 3])
+        if qx * qx + qz * qz > tol * tol:
+            continue
+        ex = seg[s, 2] - x1
+        ez = seg[s, 3] - z1
+        ll = math.sqrt(ex * ex + ez * ez)
+        if ll <= 0.0:
+            continue
+        nx = ez / ll
+        nz = -ex / ll
+        probe = 1e3 * tol
+        if _inside(px + probe * nx, pz + probe * nz, seg):
+            nx = -nx
+            nz = -nz
+        sx += nx
+        sz += nz
+    ns = math.sqrt(sx * sx + sz * sz)
+    if ns < 1e-6:
+        return 0.0, 1.0
+    return sx / ns, sz / ns
+
+
 @njit(cache=True, fastmath=True)
 def _polygon_sdf_from(px, pz, seg, first):
     """:func:`polygon_sdf` that tries segment ``first`` (say the nearest one of a neighbouring point)
@@ -88,11 +141,30 @@ def _polygon_sdf_from(px, pz, seg, first):
             if px < xc:
                 inside = not inside
     d = math.sqrt(best)
-    if d < 1e-300:
-        return 0.0, 0.0, 1.0, nearest
-    if inside:
-        return -d, bx / d, bz / d, nearest
-    return d, -bx / d, -bz / d, nearest
+    ex = seg[nearest, 2] - seg[nearest, 0]
+    ez = seg[nearest, 3] - seg[nearest, 1]
+    tol = _ON_OUTLINE * math.sqrt(ex * ex + ez * ez)
+    if d <= tol:
+        # on the outline to rounding: the offset's direction is rounding noise, so take the
+        # outline's own normal (phi = 0), which a mirrored point gets mirrored
+        nx, nz = _outline_normal(px, pz, seg, tol)
+        return 0.0, nx, nz, nearest
+    nx = bx / d if inside else -bx / d
+    nz = bz / d if inside else -bz / d
+    x1 = seg[nearest, 0]
+    z1 = seg[nearest, 1]
+    t = ((px - x1) * ex + (pz - z1) * ez) / (ex * ex + ez * ez)
+    if 0.0 < t < 1.0:
+        # nearest point inside the segment: the normal is the segment's own, exactly (the offset's
+        # direction carries rounding of the coordinates over d, large close to the surface)
+        ll = math.sqrt(ex * ex + ez * ez)
+        if nx * ez - nz * ex >= 0.0:
+            nx = ez / ll
+            nz = -ex / ll
+        else:
+            nx = -ez / ll
+            nz = ex / ll
+    return (-d if inside else d), nx, nz, nearest
 
 
 @njit(cache=True, fastmath=True)
@@ -213,7 +285,8 @@ _FAR = 1e300
 @njit(cache=True, fastmath=True, inline="always")
 def _far_side(npx, npz, node, i, j):
     """True if a particle of body normal (npx, npz) is in the far-side field of band node (i, j)."""
-    return node[i, j, 2] < 0.5 * _FAR and npx * node[i, j, 0] + npz * node[i, j, 1] < 0.0
+    # a normal perpendicular to the node's (dot product zero to rounding) stays on the near side
+    return node[i, j, 2] < 0.5 * _FAR and npx * node[i, j, 0] + npz * node[i, j, 1] < -1e-9
 
 
 #: Particles per block of :func:`body_particles` (each block lists its near particles in place).
@@ -300,7 +373,7 @@ def body_nodes(x0, z0, h, seg, pose, reach, band, node, old_box):
                 rz = z0 + j * h - zb
                 phi, nbx, nbz, hint = _polygon_sdf_from(cth * rx - sth * rz, sth * rx + cth * rz, seg, hint)
                 node[i, j, 2] = _FAR
-                if phi < band:
+                if phi < band * (1.0 - 1e-9):  # a node at the band's edge to rounding is out
                     node[i, j, 0] = cth * nbx + sth * nbz
                     node[i, j, 1] = -sth * nbx + cth * nbz
                     node[i, j, 2] = phi
@@ -359,10 +432,18 @@ def p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0
                 side[i, j, o + 2] += wm * (dx * npx + dz * npz + phi)
 
 
+#: Relative rounding of a field's gap sum (kg m), per kg of field mass and metre of cell size.
+_GAP_TOL = 1e-9
+
+
 @njit(cache=True, fastmath=True, inline="always")
-def _contact_field(vx, vz, sx, sz, gap, ubx, ubz, mu):
-    """New velocity of one grain field: body contact if its gap sum ``gap`` <= 0 (see above)."""
-    if gap > 0.0:
+def _contact_field(vx, vz, sx, sz, gap, tol, ubx, ubz, mu):
+    """New velocity of one grain field: body contact if its gap sum ``gap`` <= ``tol`` (see above).
+
+    ``tol`` > 0 is rounding: a node exactly on a face (a face aligned with a grid line) has a gap
+    sum of zero to rounding, whose sign must not decide the contact (nor differ between mirror
+    images)."""
+    if gap > tol:
         return vx, vz
     ns = math.sqrt(sx * sx + sz * sz)
     if ns <= 0.0:
@@ -433,7 +514,9 @@ def body_contact_sides(
                     m_near, px - side[i, j, 1], pz - side[i, j, 2], dt, gravity, keep, i, j, nx, pad,
                     wall_kind, wall_mu,
                 )  # fmt: skip
-                nvx, nvz = _contact_field(vx, vz, side[i, j, 3], side[i, j, 4], side[i, j, 5], ubx, ubz, mu)
+                nvx, nvz = _contact_field(
+                    vx, vz, side[i, j, 3], side[i, j, 4], side[i, j, 5], _GAP_TOL * h * m_near, ubx, ubz, mu
+                )
                 grid_vel[i, j, 0] = nvx
                 grid_vel[i, j, 1] = nvz
                 jx -= m_near * (nvx - vx) / dt
@@ -442,7 +525,9 @@ def body_contact_sides(
                 vx, vz = _node_velocity(
                     m_far, side[i, j, 1], side[i, j, 2], dt, gravity, keep, i, j, nx, pad, wall_kind, wall_mu
                 )
-                nvx, nvz = _contact_field(vx, vz, side[i, j, 6], side[i, j, 7], side[i, j, 8], ubx, ubz, mu)
+                nvx, nvz = _contact_field(
+                    vx, vz, side[i, j, 6], side[i, j, 7], side[i, j, 8], _GAP_TOL * h * m_far, ubx, ubz, mu
+                )
                 grid_vel_m[i, j, 0] = nvx
                 grid_vel_m[i, j, 1] = nvz
                 jx -= m_far * (nvx - vx) / dt

@@ -167,7 +167,7 @@ def p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, x0, z0, h, 
     nd = node[ii, jj]  # (n, 3, 3, 3)
     band = nd[..., 2] < 1e299
     npn = geo[near, None, None, :2]
-    far = band & (np.einsum("pija,pija->pij", np.broadcast_to(npn, nd[..., :2].shape), nd[..., :2]) < 0)
+    far = band & (np.einsum("pija,pija->pij", np.broadcast_to(npn, nd[..., :2].shape), nd[..., :2]) < -1e-9)
     wm = wgt * mass[near, None, None]
     sig = np.zeros((len(near), 2, 2))
     sig[:, 0, 0], sig[:, 1, 1] = stress[near, 0], stress[near, 1]
@@ -208,7 +208,7 @@ def body_contact_sides_reference(grid_mass, grid_mom, side, node, x0, z0, h, dt,
         new = v.copy()
         s = side[..., o : o + 2]
         ns = np.linalg.norm(s, axis=-1)
-        act = has & (side[..., o + 2] <= 0) & (ns > 0)
+        act = has & (side[..., o + 2] <= 1e-9 * h * m) & (ns > 0)  # gap zero to rounding: contact
         n = s[act] / ns[act][:, None]
         rel = v[act] - ub[act]
         vn = np.einsum("ka,ka->k", rel, n)
