@@ -106,6 +106,8 @@ def test_mpm_intrude_writes_field_plot_and_animation(run_cli, tmp_path):
         "0.02",
         "--depth",
         "0.02",
+        "--speed",
+        "0.2",  # a fast stroke (the outputs are under test, not the force)
         "--material",
         "MS",
         "--cell-size",
@@ -121,7 +123,7 @@ def test_mpm_intrude_writes_field_plot_and_animation(run_cli, tmp_path):
         "--series",
         str(tmp_path / "s.csv"),
         "--record-interval",
-        "0.1",
+        "0.025",
     )
     assert code == 0, err
     import pandas as pd

@@ -214,3 +214,20 @@ def test_dem_sweep_gives_the_same_rows_serially_and_on_worker_processes(run_cli,
     assert rows["serial"] == rows["processes"]  # bit for bit, in case order
     assert [r["depth_m"] for r in rows["serial"]] == [0.004, 0.002]
     assert rows["serial"][0]["force_z_N"] > rows["serial"][1]["force_z_N"] > 0
+
+
+def test_dem_sweep_plots_force_against_depth(run_cli, soft_medium, tmp_path):
+    """--plot draws F_z and F_x against depth, one line per (angle, direction); a bad suffix is
+    refused before any grain is poured."""
+    code, _, err = run_cli("dem", "sweep", "plate", "--length", "0.012", "--depths", "0.004",
+                           "--plot", str(tmp_path / "f.txt"))  # fmt: skip
+    assert code == 1 and "--plot" in err and err.count("\n") == 1
+    fig = tmp_path / "sweep.png"
+    code, out, err = run_cli("dem", "sweep", "plate", "--length", "0.012", "--depths", "0.004",
+                             "--directions", "60,90", "--grain-diameter", "0.002", "--material", soft_medium,
+                             "--packing", "loose", "--speed", "0.04", "--format", "json",
+                             "--plot", str(fig))  # fmt: skip
+    assert code == 0, err
+    rows = json.loads(out)
+    assert [r["direction_deg"] for r in rows] == [60.0, 90.0]
+    assert fig.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and fig.stat().st_size > 10_000

@@ -19,6 +19,7 @@ from .options import (
     FORMAT,
     MATERIAL,
     OUT,
+    PLOT,
     WHEEL_WIDTH,
     animation_file,
     out_file,
@@ -411,6 +412,7 @@ def sweep(
     workers: int | None = typer.Option(None, "--workers", help=_WORKERS_HELP),
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
+    plot: str | None = PLOT,
 ) -> None:
     """Every (depth, angle, direction) intrusion of BODY from one settled bed; one row per case."""
     from ..dem import load_lammps
@@ -419,6 +421,7 @@ def sweep(
 
     shape = build_body(body, width, **sizes)
     out_path = out_file("--out", out)
+    plot_path = plot_file("--plot", plot)
     check_parallel(scheduler, workers)
     depth_list = parse_float_list("--depths", depths)
     if not all(v > 0 for v in depth_list):
@@ -451,12 +454,14 @@ def sweep(
         res = intrusion_sweep(shape, mat, cases, speed=speed, grain_diameter=d, kind=bed, packing=packing,
                               seed=seed, scheduler=scheduler, workers=workers,
                               progress=lambda done, total: advance(1))  # fmt: skip
-    emit(
-        res.rows(),
-        fmt,
-        out_path,
-        title=f"DEM {body.value} sweep in {mat.name}, {res.bed['grain_count']} grains",
-    )
+    title = f"DEM {body.value} sweep in {mat.name}, {res.bed['grain_count']} grains"
+    rows = res.rows()
+    if plot_path is not None:
+        from ..io import save_figure
+        from ..plotting.core import plot_sweep_forces
+
+        save_figure(plot_sweep_forces(rows, title=title), plot_path)
+    emit(rows, fmt, out_path, title=title)
 
 
 #: the flags of ``terradyn calibrate rft --from-dem`` (the virtual plate test)

@@ -50,8 +50,9 @@ class IntrusionSweep:
         return [
             {
                 "depth_m": c.depth,
-                "angle_deg": math.degrees(c.angle),
-                "direction_deg": math.degrees(c.direction),
+                # degrees as the user gave them (60, not 59.99999999999999 back from radians)
+                "angle_deg": round(math.degrees(c.angle), 9),
+                "direction_deg": round(math.degrees(c.direction), 9),
                 **{k: r.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")},
             }
             for c, r in zip(self.cases, self.results, strict=True)

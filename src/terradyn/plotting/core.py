@@ -13,6 +13,7 @@ __all__ = [
     "plot_alpha_maps",
     "plot_body_tractions",
     "plot_force_depth",
+    "plot_sweep_forces",
 ]
 
 
@@ -147,6 +148,31 @@ def plot_force_depth(
     ax.grid(True, alpha=0.35)
     ax.legend()
     return ax
+
+
+def plot_sweep_forces(rows: list[dict[str, float]], *, title: str = "") -> Any:
+    """Vertical and horizontal force [N] against depth of a sweep's rows (keys ``depth_m``,
+    ``angle_deg``, ``direction_deg``, ``force_z_N``, ``force_x_N``): one line per (angle, direction),
+    depths sorted. Returns the figure."""
+    fig, axes = new_figure(1, 2, figsize=(10.0, 4.2), sharex=True)
+    groups: dict[tuple[float, float], list[dict[str, float]]] = {}
+    for r in rows:
+        groups.setdefault((r["angle_deg"], r["direction_deg"]), []).append(r)
+    for (angle, direction), members in sorted(groups.items()):
+        members = sorted(members, key=lambda r: r["depth_m"])
+        depth = np.array([r["depth_m"] for r in members]) * 1e3
+        label = f"angle {angle:g}°, direction {direction:g}°"
+        for ax, key in ((axes[0, 0], "force_z_N"), (axes[0, 1], "force_x_N")):
+            ax.plot(depth, [r[key] for r in members], marker="o", ms=4, label=label)
+    for ax, name in ((axes[0, 0], "vertical force F$_z$ [N]"), (axes[0, 1], "horizontal force F$_x$ [N]")):
+        ax.set_xlabel("depth of the reference point [mm]")
+        ax.set_ylabel(name)
+        ax.axhline(0.0, color="0.6", lw=0.8)
+        ax.grid(True, alpha=0.35)
+    axes[0, 0].legend(fontsize=8)
+    if title:
+        fig.suptitle(title)
+    return fig
 
 
 def plot_body_tractions(
