@@ -298,8 +298,9 @@ def _side_key(npx, npz):
     """Which side of a body a particle with outward normal (npx, npz) lies on, for
     :func:`patch_divergence`: 1 / 2 above / below where the normal is mostly vertical, 3 / 4 to +x / -x
     where it is mostly horizontal. Mirroring x (or z) maps each key to one key, so a mirrored case
-    groups its particles as the original does."""
-    if abs(npz) >= abs(npx):
+    groups its particles as the original does. A normal at 45 deg to rounding (a grain on the
+    diagonal of a corner, common when corners and grains sit on the grid's lattice) is vertical."""
+    if abs(npz) >= abs(npx) - 1e-9:
         return 1 if npz > 0.0 else 2
     return 3 if npx > 0.0 else 4
 

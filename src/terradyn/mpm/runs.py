@@ -291,6 +291,18 @@ def _series(runner: Runner, width: float, skip_phases: int) -> dict[str, np.ndar
     return out
 
 
+def _direction_vector(direction: float) -> tuple[float, float]:
+    """``(cos, sin)`` of a motion direction [rad], exact at multiples of 90 deg: math.cos(pi / 2) is
+    6e-17, which would start a body pushed straight down 1e-17 m off its axis and drift it sideways,
+    so that a symmetric case is not its own mirror image."""
+    c, s = math.cos(direction), math.sin(direction)
+    if abs(c) < 1e-15:
+        return 0.0, math.copysign(1.0, s)
+    if abs(s) < 1e-15:
+        return math.copysign(1.0, c), 0.0
+    return c, s
+
+
 def _intrusion_bed(seg, c: _Common, depth, window, direction, angle):
     """Bed and start pose for an intrusion: returns ``(grid, start pose (3,), travel [m])``.
 
@@ -301,7 +313,7 @@ def _intrusion_bed(seg, c: _Common, depth, window, direction, angle):
     reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
     z_start = -lowest_point(seg, np.array([0.0, 0.0, angle])) + 0.5 * h
     z_end = -(depth + 0.5 * window)
-    sin_d, cos_d = math.sin(direction), math.cos(direction)
+    cos_d, sin_d = _direction_vector(direction)
     travel = (z_start - z_end) / sin_d
     x_at_depth = (z_start + depth) / sin_d * cos_d
     # Free-slip walls must lie beyond the failure mechanism; closer walls give it a frictionless slip
@@ -463,7 +475,8 @@ def run_intrusion(
     grid, pose0, travel = _intrusion_bed(seg, c, depth, window, direction, angle)
     dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=speed)
     settle_phases, settle = _settle_phases(c, grid.depth, dt)
-    vel = (speed * math.cos(direction), -speed * math.sin(direction), 0.0)
+    cos_d, sin_d = _direction_vector(direction)
+    vel = (speed * cos_d, -speed * sin_d, 0.0)
     phases = [
         *settle_phases,
         Phase("intrude", max(1, math.ceil(travel / speed / dt)), twist=vel, free=(False, False)),
