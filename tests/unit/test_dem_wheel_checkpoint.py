@@ -168,3 +168,15 @@ def test_cli_stops_keeps_its_checkpoint_and_resumes_exactly(run_cli, medium, tmp
     assert not any(p.exists() for p in checkpoint_files(ckpt))
     code, _, err = run_cli(*CLI, "--material", soft, "--checkpoint", str(ckpt), "--resume")
     assert code == 1 and "--checkpoint" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_gravity_other_than_the_prepared_beds_is_refused(medium, bed_file):
+    """A prepared bed settled at 9.81 m/s^2 keeps it: asking for the Moon's gravity on it is one clear
+    error (it was silently ignored), and the bed's own value is accepted."""
+    bed = load_bed(bed_file)
+    try:
+        with pytest.raises(InputError, match="gravity") as err:
+            run_wheel(WHEEL, medium, bed=bed, gravity=1.62, **RUN)
+        assert "1.62" in str(err.value) and "9.81" in str(err.value)
+    finally:
+        bed.close()

@@ -108,7 +108,7 @@ def run_wheel(
     grain_diameter: float | None = None,
     seed: int = 12345,
     record_interval: float | None = None,
-    gravity: float = 9.81,
+    gravity: float | None = None,
     checkpoint_path: str | Path | None = None,
     checkpoint_interval: float = 60.0,
     resume: bool = False,
@@ -120,8 +120,10 @@ def run_wheel(
 ) -> DEMWheelResult:
     """Roll ``body`` at spin ``omega`` [rad/s] and slip ``slip`` under ``load`` [N] for ``duration`` [s].
 
-    The wheel starts at x = -travel/2 (travel = V duration) and ends near x = +travel/2. Gravity is
-    that of the bed (``BedSpec.gravity``); the wheel's mass is ``load / gravity``. ``snapshot_dir``:
+    The wheel starts at x = -travel/2 (travel = V duration) and ends near x = +travel/2. Gravity
+    [m/s^2] is that of the bed: a fresh bed is settled at ``gravity`` (default 9.81); a prepared
+    ``bed`` keeps its own (``BedSpec.gravity``), and a ``gravity`` that differs from it is refused. The
+    wheel's mass is ``load / gravity``. ``snapshot_dir``:
     per-grain NetCDF snapshots every ``snapshot_interval`` [s] (default duration / 20);
     ``frame_count`` animation frames over the run (``result.frames``).
 
@@ -131,6 +133,12 @@ def run_wheel(
     differ from the checkpoint's). ``stop_after_rows`` stops early (after writing a checkpoint), as an
     interruption would; tests use it."""
     r = _radius(body)
+    if bed is not None:
+        if gravity is not None and not math.isclose(gravity, bed.spec.gravity, rel_tol=1e-12):
+            raise InputError("gravity", gravity, f"the prepared bed's {bed.spec.gravity:g} m/s^2",
+                             "a bed keeps the gravity it settled at; leave gravity out")  # fmt: skip
+        gravity = bed.spec.gravity
+    gravity = check_positive("gravity", 9.81 if gravity is None else gravity)
     load = check_positive("load", load)
     omega = check_finite("omega", omega)
     if not omega > 0:
