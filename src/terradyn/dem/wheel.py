@@ -84,8 +84,11 @@ def _radius(body: Body) -> float:
 def default_wheel_bed(body: Body, *, travel: float, grain_diameter: float,
                       kind: BedKind | str = BedKind.SLAB, packing: Packing | str = Packing.DENSE,
                       seed: int = 12345) -> BedSpec:  # fmt: skip
-    """A bed for a wheel rolling ``travel`` [m] forward from x = 0: one radius of grains behind and
-    two in front, 1.5 radii deep."""
+    """A bed for a wheel rolling ``travel`` [m] from x = -travel/2 to +travel/2 (as :func:`run_wheel`
+    places it), 1.5 radii deep. It reaches ``travel + r + margin`` either side of x = 0 (margin =
+    max(r, 6 grains)), so beyond the wheel's path it keeps ``travel / 2 + margin`` of grains at each
+    end: more than the margin needs (about twice the grains of a bed sized to the path for a travel of
+    several radii); kept so that measured DEM wheel figures stay comparable."""
     r = _radius(body)
     margin = max(r, 6 * grain_diameter)
     length = 2.0 * (travel + r + margin) + 0.0
