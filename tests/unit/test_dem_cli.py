@@ -216,12 +216,31 @@ def test_dem_sweep_gives_the_same_rows_serially_and_on_worker_processes(run_cli,
     assert rows["serial"][0]["force_z_N"] > rows["serial"][1]["force_z_N"] > 0
 
 
-def test_dem_sweep_plots_force_against_depth(run_cli, soft_medium, tmp_path):
-    """--plot draws F_z and F_x against depth, one line per (angle, direction); a bad suffix is
-    refused before any grain is poured."""
+def test_sweep_figure_has_one_line_per_angle_and_direction():
+    from terradyn.plotting.core import plot_sweep_forces
+
+    rows = [{"depth_m": z, "angle_deg": 0.0, "direction_deg": g, "force_z_N": z * g, "force_x_N": -z}
+            for z in (0.004, 0.002, 0.006) for g in (60.0, 90.0)]  # fmt: skip
+    fig = plot_sweep_forces(rows, title="t")
+    left, right = fig.axes[:2]
+    assert [ln.get_label() for ln in left.get_lines()[:2]] == [
+        "angle 0°, direction 60°",
+        "angle 0°, direction 90°",
+    ]
+    x, y = left.get_lines()[1].get_data()
+    assert list(x) == [2.0, 4.0, 6.0] and list(y) == pytest.approx([0.18, 0.36, 0.54])  # depths sorted, mm
+    assert "[N]" in left.get_ylabel() and "[mm]" in right.get_xlabel()
+
+
+def test_dem_sweep_plot_flag_is_checked_before_any_grain_is_poured(run_cli, tmp_path):
     code, _, err = run_cli("dem", "sweep", "plate", "--length", "0.012", "--depths", "0.004",
                            "--plot", str(tmp_path / "f.txt"))  # fmt: skip
     assert code == 1 and "--plot" in err and err.count("\n") == 1
+
+
+@pytest.mark.slow
+def test_dem_sweep_plots_force_against_depth(run_cli, soft_medium, tmp_path):
+    """--plot draws F_z and F_x against depth, one line per (angle, direction)."""
     fig = tmp_path / "sweep.png"
     code, out, err = run_cli("dem", "sweep", "plate", "--length", "0.012", "--depths", "0.004",
                              "--directions", "60,90", "--grain-diameter", "0.002", "--material", soft_medium,
