@@ -82,8 +82,8 @@ def test_changes_that_grow_on_refinement_get_no_extrapolation():
 
 
 def test_an_order_above_the_formal_order_is_capped_in_the_band():
-    """The plate sequence of docs/mpm.md (patch divergence): observed order 6.8 is not believed; the
-    band uses order 2 and so is wider than the raw GCI."""
+    """A plate sequence of docs/mpm.md (patch divergence, "first split" column): observed order 6.8
+    is not believed; the band uses order 2 and so is wider than the raw GCI."""
     sizes, values = (0.01, 0.0075, 0.005, 0.00375), (215.72, 200.79, 162.74, 160.52)
     est = richardson(sizes, values)
     assert est.order == pytest.approx(6.79, abs=0.05)
