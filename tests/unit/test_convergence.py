@@ -7,7 +7,7 @@ import math
 import pytest
 
 from terradyn.errors import InputError
-from terradyn.studies.convergence import converge, richardson
+from terradyn.studies.convergence import converge, least_squares_limit, richardson
 
 
 @pytest.mark.parametrize("order", [0.7, 1.0, 2.0])
@@ -95,3 +95,35 @@ def test_an_order_above_the_formal_order_is_capped_in_the_band():
     assert "formal order" in est.note
     # power laws up to the formal order are untouched (see the parametrised test above)
     assert richardson((0.01, 0.005, 0.0025), [25 - 300 * h**2 for h in (0.01, 0.005, 0.0025)]).note == ""
+
+
+def test_least_squares_limit_recovers_a_power_law_and_measures_ringing():
+    sizes = [0.005, 0.00375, 0.003, 0.0025]
+    exact = least_squares_limit(sizes, [160.0 + 1.5e6 * h**2 for h in sizes])
+    assert exact.extrapolated == pytest.approx(160.0, rel=1e-9)
+    assert exact.coefficient == pytest.approx(1.5e6, rel=1e-6)
+    assert exact.standard_error == pytest.approx(0.0, abs=1e-6)
+    assert exact.finest == pytest.approx(160.0 + 1.5e6 * 0.0025**2)
+    # +-3 N of alternating ringing on the same law: the limit stays near 160 and the error grows
+    rung = least_squares_limit(sizes, [160.0 + 1.5e6 * h**2 + 3.0 * (-1) ** k for k, h in enumerate(sizes)])
+    assert abs(rung.extrapolated - 160.0) < 3 * rung.standard_error
+    assert rung.residual_sd > 1.0 and rung.standard_error > 1.0
+    with pytest.raises(InputError, match="four or more"):
+        least_squares_limit(sizes[:3], [1.0, 2.0, 3.0])
+    with pytest.raises(InputError, match="distinct"):
+        least_squares_limit([0.01, 0.01, 0.005, 0.002], [1.0, 2.0, 3.0, 4.0])
+
+
+def test_the_measured_plate_sequence_rings_and_gets_a_least_squares_limit():
+    """docs/mpm.md, classical update, 60 mm plate at 40 mm: 5 / 3.75 / 3 / 2.5 mm. The three finest
+    oscillate (no Richardson value); the least-squares limit at order 2 is 164.7 +- 6.5 N."""
+    sizes, values = [0.005, 0.00375, 0.003, 0.0025], [203.7, 189.3, 171.9, 178.8]
+    assert richardson(sizes, values).extrapolated is None
+    fit = least_squares_limit(sizes, values)
+    assert fit.extrapolated == pytest.approx(164.7, abs=0.1)
+    assert fit.standard_error == pytest.approx(6.46, abs=0.01)
+    res = converge(lambda h: {"f": dict(zip(sizes, values, strict=True))[h]}, sizes, ["f"])
+    (row,) = res.summary()
+    assert row["ls_extrapolated"] == pytest.approx(164.7, abs=0.1)
+    assert row["relative_error_finest_ls"] == pytest.approx(178.8 / fit.extrapolated - 1)
+    assert converge(lambda h: {"f": 1.0 + h}, sizes[:3], ["f"]).fits == {}

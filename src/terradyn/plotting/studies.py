@@ -153,12 +153,22 @@ def plot_convergence(result: Any) -> Any:
         est = result.estimates[name]
         ax.plot(h_mm, result.values[name], "o-", color="C0", label="MPM")
         finest = h_mm.min()
-        ax.errorbar([finest], [est.finest], yerr=[est.error_band], color="C3", capsize=4,
-                    label="error band of the finest (GCI)")  # fmt: skip
+        band = (
+            "error band of the finest (GCI)" if est.extrapolated is not None else "spread of the three finest"
+        )
+        ax.errorbar([finest], [est.finest], yerr=[est.error_band], color="C3", capsize=4, label=band)
         if est.extrapolated is not None:
             order = "" if est.order is None else f", order {est.order:.2g}"
             ax.plot([0.0], [est.extrapolated], "*", ms=12, color="C2", label=f"Richardson{order}")
             ax.plot([0.0, finest], [est.extrapolated, est.finest], ":", color="C2")
+        fit = getattr(result, "fits", {}).get(name)
+        if fit is not None:
+            hh = np.linspace(0.0, float(h_mm.max()), 60)
+            ax.plot(
+                hh, fit.extrapolated + fit.coefficient * (1e-3 * hh) ** fit.order, "--", color="C1", lw=1.0
+            )
+            ax.errorbar([0.0], [fit.extrapolated], yerr=[fit.standard_error], fmt="s", color="C1", capsize=4,
+                        label=f"least squares, order {fit.order:g} (+- 1 s.e.)")  # fmt: skip
         ax.set_xlim(left=-0.04 * float(h_mm.max()))
         ax.set_xlabel("cell size [mm]")
         ax.set_ylabel(_quantity_label(name))

@@ -68,6 +68,8 @@ class MPMFrictionFit:
     material: Material
     cell_size: float | None
     converged: bool
+    #: the MPM force [N] at the fitted mu_s at each data row (not scaled by ``scale``)
+    predicted_force_z_N: np.ndarray | None = None
 
     def record(self) -> dict[str, Any]:
         return {
@@ -229,4 +231,5 @@ def fit_mpm_friction(
         material=fitted,
         cell_size=resolution.cell_size,
         converged=converged,
+        predicted_force_z_N=best_pred,
     )

@@ -272,7 +272,17 @@ def load_study_file(path: str | Path) -> tuple[str, _Params]:
 
 def _load_plugins() -> None:
     """Import the study modules that register themselves."""
-    from . import dem_compare, dem_scaling, flapped, high_speed, mpm_compare, optimisation, wheel3d, wheels  # noqa: F401
+    from . import (  # noqa: F401
+        dem_calibrated,
+        dem_compare,
+        dem_scaling,
+        flapped,
+        high_speed,
+        mpm_compare,
+        optimisation,
+        wheel3d,
+        wheels,
+    )
 
 
 def run_study(
