@@ -40,7 +40,7 @@ app = typer.Typer(
 
 class MPMOptions:
     cell_size = typer.Option(
-        None, "--cell-size", help="Grid cell size [m] (default: diameter / 16, wheels / 32)."
+        None, "--cell-size", help="Grid cell size [m] (default: diameter / 20, wheels / 32)."
     )
     ppc = typer.Option(2, "--particles-per-cell", help="Particles per cell along each axis.")
     volumetric = typer.Option(

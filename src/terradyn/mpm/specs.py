@@ -164,7 +164,7 @@ VOLUMETRIC = ("point", "patch")
 class Resolution(_Spec):
     """How finely the grains and the grid resolve the case.
 
-    cell_size : grid spacing [m]; None = body diameter / 16 for intrusions, / 32 for wheels
+    cell_size : grid spacing [m]; None = body diameter / 20 for intrusions, / 32 for wheels
         (terradyn.mpm.runs.INTRUSION_CELLS_ACROSS, terradyn.mpm.wheel_runs.WHEEL_CELLS_ACROSS).
     particles_per_cell : material points per cell along each axis (1-4).
     cfl : time step as a fraction of the cell crossing time of the fastest wave (<= 0.5).
