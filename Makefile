@@ -24,7 +24,7 @@ demo: $(STAMP)
 	$(BIN)/terradyn demo --out terradyn-demo
 
 test: $(TSTAMP)
-	$(BIN)/python -m pytest -q -m "not slow"
+	$(BIN)/python -m pytest -q -m "not slow" -n 2 --dist loadfile
 
 test-all: $(TSTAMP)
 	$(BIN)/python -m pytest -q

@@ -22,6 +22,7 @@ from .options import (
     PLOT,
     WHEEL_WIDTH,
     animation_file,
+    input_file,
     out_file,
     out_folder,
     plot_file,
@@ -189,13 +190,52 @@ def plot_history(result: Any, path: Path, title: str) -> None:
     plt.close(fig)
 
 
+MESH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001}
+
+
+def _intruder(body: BodyKind | None, mesh: str | None, units: str, bed: str, width: float,
+              sizes: dict[str, Any]) -> Any:  # fmt: skip
+    """The plane body of BODY and its size flags, or the 3D body of --mesh (centred on its box)."""
+    if body is None and mesh is None:
+        raise InputError("BODY", None, "a body shape or --mesh FILE")
+    if body is not None and mesh is not None:
+        raise InputError("--mesh", mesh, f"no BODY argument with --mesh (got {body.value}; give one of them)")
+    if body is not None:
+        if units != "m":
+            raise InputError("--mesh-units", units, "only with --mesh")
+        return build_body(body, width, **sizes)
+    given = {k: v for k, v in sizes.items() if v is not None}
+    if given:
+        key = next(iter(given))
+        raise InputError(
+            f"--{key.replace('_', '-')}", given[key], "no size flags with --mesh (the mesh sets the size)"
+        )
+    if bed != "3d":
+        raise InputError("--bed", bed, "3d with --mesh (a slab bed is periodic across)")
+    scale = MESH_UNITS.get(units.strip().lower())
+    if scale is None:
+        raise InputError("--mesh-units", units, "one of m, cm, mm")
+    from ..dem.intruders import MeshIntruder
+    from ..geometry3d.mesh import load_mesh
+
+    path = input_file("--mesh", mesh)
+    assert path is not None
+    return MeshIntruder.from_mesh(load_mesh(path, scale=scale))
+
+
 @app.command("intrude")
 @with_flags("sizes", BODY_SIZE_FLAGS)
 def intrude(
-    body: BodyKind = typer.Argument(..., help="Body shape."),
+    body: BodyKind | None = typer.Argument(None, help="Body shape (or --mesh for a 3D body)."),
     depth: float = typer.Option(
         ..., "--depth", help="Depth [m] of the reference point at the end of the run."
     ),
+    mesh: str | None = typer.Option(
+        None,
+        "--mesh",
+        help="3D body (STL/OBJ/PLY) instead of BODY, in a --bed 3d; reference point: its box centre.",
+    ),
+    mesh_units: str = typer.Option("m", "--mesh-units", help="Length unit of the --mesh file: m, cm or mm."),
     angle: float = ANGLE,
     direction: float = DIRECTION,
     speed: float = typer.Option(0.02, "--speed", help="Intrusion speed [m/s]."),
@@ -224,7 +264,8 @@ def intrude(
     """Push BODY into a poured and settled DEM bed at --speed; force and torque at --depth."""
     from ..dem import BedKind, Packing, default_bed_spec, load_lammps, run_intrusion
 
-    shape = build_body(body, width, **sizes)
+    shape = _intruder(body, mesh, mesh_units, bed, width, sizes)
+    label = body.value if body is not None else Path(str(mesh)).name
     out_path = out_file("--out", out)
     plot_path = plot_file("--plot", plot)
     series_path = out_file("--series", series, (".csv",))
@@ -278,10 +319,10 @@ def intrude(
         return
     if series_path is not None:
         atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
-    title = f"DEM {body.value} in {mat.name}, {res.summary['grain_count']} grains"
+    title = f"DEM {label} in {mat.name}, {res.summary['grain_count']} grains"
     if plot_path is not None:
         plot_history(res, plot_path, title)
-    outs.write(res, f"DEM {body.value} in {mat.name}")
+    outs.write(res, f"DEM {label} in {mat.name}")
     if ckpt is not None:  # the run finished: its checkpoint is no longer needed
         from ..dem.runs import checkpoint_files
 

@@ -19,13 +19,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..geometry import Body
 from ._lammps import is_root
 from .bed import GRAIN_TYPE
+
+if TYPE_CHECKING:
+    from .intruders import MeshIntruder
 
 __all__ = ["GRAIN_UNITS", "FieldRecorder", "body_segments", "grain_fields"]
 
@@ -85,7 +88,7 @@ def grain_fields(lmp: Any, surface: float, *, stress_compute: str | None = None)
     return out
 
 
-def body_segments(body: Body, pose: tuple[float, float, float], spacing: float) -> np.ndarray:
+def body_segments(body: Body | MeshIntruder, pose: tuple[float, float, float], spacing: float) -> np.ndarray:
     """Body outline (S, 2, 2) [m] at ``pose`` = (x, z, theta) in terradyn's frame."""
     x, z, theta = pose
     c, s = math.cos(theta), math.sin(theta)
@@ -125,7 +128,7 @@ class FieldRecorder:
     ``pose(time_s)`` is the body's pose (x, z, theta) in terradyn's frame; ``attrs`` are the run's
     constant attributes (units, bed, body) written into every snapshot beside time, step and pose."""
 
-    body: Body
+    body: Body | MeshIntruder
     surface: float
     grain_diameter: float
     snapshot_dir: Path | None = None

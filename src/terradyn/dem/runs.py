@@ -26,7 +26,7 @@ import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -37,7 +37,10 @@ from . import bed as _bed
 from ._lammps import is_root, new_lammps
 from .bed import BODY_TYPE, Bed, BedKind, BedSpec, Packing, check_speed, prepare_bed
 from .fields import FieldRecorder, frame_every, rows_between
-from .intruders import WALL_DIAMETER_FRACTION, body_spheres, rotated_extent
+from .intruders import WALL_DIAMETER_FRACTION, MeshIntruder, body_spheres, rotated_extent
+
+if TYPE_CHECKING:
+    from ..geometry3d import TriangleMesh
 
 __all__ = ["DEMIntrusionResult", "default_bed_spec", "run_intrusion"]
 
@@ -75,11 +78,14 @@ class DEMIntrusionResult:
 
 
 def default_bed_spec(
-    body: Body, *, depth: float, direction: float, angle: float, grain_diameter: float,
-    kind: BedKind | str = BedKind.SLAB, packing: Packing | str = Packing.DENSE, seed: int = 12345,
+    body: Body | MeshIntruder | TriangleMesh, *, depth: float, direction: float, angle: float,
+    grain_diameter: float, kind: BedKind | str = BedKind.SLAB, packing: Packing | str = Packing.DENSE,
+    seed: int = 12345,
 ) -> BedSpec:  # fmt: skip
     """A bed around the body's path: the body's extent plus 6 grains (or one body size) of grains on
-    each side and below, and room above for its start."""
+    each side and below, and room above for its start. A 3D (mesh) body needs ``kind="3d"``; its bed
+    keeps the same margin beside it across (y) too."""
+    body = as_intruder(body)
     xmin, xmax, zmin, zmax = rotated_extent(body, angle)
     s = math.sin(direction)
     travel = (0.5 * grain_diameter + depth - zmin) / s
@@ -91,11 +97,29 @@ def default_bed_spec(
     length = 2.0 * max(abs(x_lo), abs(x_hi))
     bed_depth = depth - zmin + margin
     headroom = zmax - zmin + 5.0 * grain_diameter
-    return BedSpec(length=length, depth=bed_depth, kind=BedKind.coerce(kind), headroom=headroom,
+    kind = BedKind.coerce(kind)
+    thickness = None
+    if isinstance(body, MeshIntruder):
+        _mesh_bed(kind)
+        thickness = body.width + 2.0 * margin
+    return BedSpec(length=length, depth=bed_depth, kind=kind, headroom=headroom, thickness=thickness,
                    packing=Packing.coerce(packing), grain_diameter=grain_diameter, seed=seed)  # fmt: skip
 
 
-def _start_gap(bed: Bed, body: Body, depth: float, direction: float, angle: float) -> float:
+def as_intruder(body: Any) -> Body | MeshIntruder:
+    """``body`` as run_intrusion takes it: a plane :class:`~terradyn.geometry.Body`, or a
+    :class:`MeshIntruder` (a :class:`~terradyn.geometry3d.TriangleMesh` is centred into one)."""
+    from ..geometry3d import TriangleMesh
+
+    return MeshIntruder.from_mesh(body) if isinstance(body, TriangleMesh) else body
+
+
+def _mesh_bed(kind: BedKind) -> None:
+    if kind is not BedKind.THREE_D:
+        raise InputError("kind", kind.value, "3d for a 3D (mesh) body (a slab is periodic across)")
+
+
+def _start_gap(bed: Bed, body: Body | MeshIntruder, depth: float, direction: float, angle: float) -> float:
     """Height [m] above the surface of the body's lowest point at the start: clear of the highest grain
     under its path by a quarter grain (the top layer of a bed is looser than its interior)."""
     d = bed.dem.grain_diameter
@@ -189,7 +213,7 @@ def _body_fixes(lmp: Any, params: dict[str, Any]) -> None:
 
 
 def run_intrusion(
-    body: Body,
+    body: Body | MeshIntruder | TriangleMesh,
     material: Material,
     *,
     depth: float,
@@ -223,10 +247,14 @@ def run_intrusion(
     (default a tenth of a grain). ``stop_after_rows`` stops early (after writing a checkpoint), as an
     interruption would; tests use it.
     """
+    body = as_intruder(body)
     speed = check_speed(speed)
     depth = check_finite("depth", depth)
     if not depth > 0:
         raise InputError("depth", depth, "a depth > 0 [m] below the surface")
+    if isinstance(body, MeshIntruder) and not resume:
+        _mesh_bed(bed.spec.kind if bed is not None else bed_spec.kind if bed_spec is not None
+                  else BedKind.coerce(kind))  # fmt: skip
     direction = _check_direction(direction)
     angle = check_finite("angle", angle)
     ckpt = Path(checkpoint_path) if checkpoint_path is not None else None
@@ -330,7 +358,7 @@ def run_intrusion(
         lmp.close()
 
 
-def _recorder(body: Body, params: dict[str, Any], snapshot_dir: str | Path | None,
+def _recorder(body: Body | MeshIntruder, params: dict[str, Any], snapshot_dir: str | Path | None,
               snapshot_interval: float | None, frame_count: int) -> FieldRecorder:  # fmt: skip
     """Snapshots and frames of an intrusion (every row a whole number of history rows apart)."""
     d, row_time = params["grain_diameter"], params["chunk"] * params["dt"]
@@ -363,7 +391,7 @@ def _recorder(body: Body, params: dict[str, Any], snapshot_dir: str | Path | Non
 
 
 def _resume(ckpt: Path, interval: float, progress: Callable[[float, float], None] | None,
-            stop_after_rows: int | None, body: Body,
+            stop_after_rows: int | None, body: Body | MeshIntruder,
             outputs: dict[str, Any]) -> DEMIntrusionResult:  # fmt: skip
     params, history, step, frames = read_checkpoint(ckpt, "dem intrusion")
     lmp = restore_lammps(ckpt, params)
