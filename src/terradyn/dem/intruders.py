@@ -91,13 +91,31 @@ class MeshIntruder:
         lo, hi = self.mesh.bounds
         return float(max(hi[0] - lo[0], hi[2] - lo[2]))
 
+    @property
+    def outer_radius(self) -> float:
+        """Largest distance [m] of a vertex from the y axis through the reference point (a wheel's
+        nominal radius when the mesh is a wheel centred on its axle)."""
+        v = self.mesh.vertices
+        return float(np.hypot(v[:, 0], v[:, 2]).max())
+
+    def describe(self) -> dict[str, object]:
+        """What identifies the body (checkpoint inputs): counts, bounds and a digest of the arrays."""
+        import hashlib
+
+        digest = hashlib.sha256(self.mesh.vertices.tobytes() + self.mesh.faces.tobytes()).hexdigest()
+        lo, hi = self.mesh.bounds
+        return {"mesh_sha256": digest[:16], "facets": int(self.mesh.facet_count),
+                "bounds_m": [lo.tolist(), hi.tolist()]}  # fmt: skip
+
     def outline(self, spacing: float | None = None) -> list[np.ndarray]:
         """The silhouette in the x-z plane (the convex hull of the vertices), for plots and extents."""
         return [_hull(self.mesh.vertices[:, [0, 2]])]
 
     def surface_points(self, spacing: float) -> np.ndarray:
         """Points (K, 3) [m] on every facet, on a lattice at most ``spacing`` apart (edges included),
-        coincident points of neighbouring facets merged."""
+        thinned to one point per cube of half ``spacing`` (neighbouring facets share their edge
+        points, and the slivers of a fan-triangulated disc would otherwise crowd its centre), so every
+        point of the surface is within 1.5 ``spacing`` of a sample."""
         tri = self.mesh.vertices[self.mesh.faces]
         longest = np.linalg.norm(tri[:, [1, 2, 0]] - tri, axis=2).max(axis=1)
         pts = []
@@ -108,7 +126,7 @@ class MeshIntruder:
             u, v = i[keep][:, None] / n, j[keep][:, None] / n
             pts.append(a + u * (b - a) + v * (c - a))
         allp = np.vstack(pts)
-        key = np.round(allp / (1e-3 * spacing)).astype(np.int64)
+        key = np.floor(allp / (0.5 * spacing)).astype(np.int64)
         _, first = np.unique(key, axis=0, return_index=True)
         return allp[np.sort(first)]
 

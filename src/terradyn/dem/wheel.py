@@ -28,7 +28,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -37,17 +37,22 @@ from ..geometry import Body
 from ..materials import Material
 from .bed import BODY_TYPE, Bed, BedKind, BedSpec, Packing, prepare_bed
 from .fields import FieldRecorder, frame_every, rows_between
-from .intruders import body_spheres, rotated_extent
+from .intruders import MeshIntruder, body_spheres, rotated_extent
 from .runs import (
     RunHooks,
     _add_atoms,
     _dem_dict,
+    _mesh_bed,
     _start_gap,
+    as_intruder,
     newton_setting,
     read_checkpoint,
     restore_lammps,
     run_chunks,
 )
+
+if TYPE_CHECKING:
+    from ..geometry3d import TriangleMesh
 
 __all__ = ["DEMWheelResult", "default_wheel_bed", "run_wheel"]
 
@@ -74,14 +79,14 @@ class DEMWheelResult:
         return pd.DataFrame({k: self.history[k] for k in WHEEL_HISTORY})
 
 
-def _radius(body: Body) -> float:
+def _radius(body: Body | MeshIntruder) -> float:
     r = getattr(body, "outer_radius", None)
     if r is None:
         raise InputError("body", body, "a wheel (WheelCircular, WheelGrousered, WheelFlapped)")
     return float(r)
 
 
-def default_wheel_bed(body: Body, *, travel: float, grain_diameter: float,
+def default_wheel_bed(body: Body | MeshIntruder | TriangleMesh, *, travel: float, grain_diameter: float,
                       kind: BedKind | str = BedKind.SLAB, packing: Packing | str = Packing.DENSE,
                       seed: int = 12345) -> BedSpec:  # fmt: skip
     """A bed for a wheel rolling ``travel`` [m] from x = -travel/2 to +travel/2 (as :func:`run_wheel`
@@ -89,16 +94,22 @@ def default_wheel_bed(body: Body, *, travel: float, grain_diameter: float,
     max(r, 6 grains)), so beyond the wheel's path it keeps ``travel / 2 + margin`` of grains at each
     end: more than the margin needs (about twice the grains of a bed sized to the path for a travel of
     several radii); kept so that measured DEM wheel figures stay comparable."""
+    body = as_intruder(body)
     r = _radius(body)
     margin = max(r, 6 * grain_diameter)
     length = 2.0 * (travel + r + margin) + 0.0
-    return BedSpec(length=length, depth=max(1.5 * r, 10 * grain_diameter), kind=BedKind.coerce(kind),
+    kind = BedKind.coerce(kind)
+    thickness = None
+    if isinstance(body, MeshIntruder):  # a 3D wheel: the same margin beside it across
+        _mesh_bed(kind)
+        thickness = body.width + 2.0 * margin
+    return BedSpec(length=length, depth=max(1.5 * r, 10 * grain_diameter), kind=kind, thickness=thickness,
                    packing=Packing.coerce(packing), headroom=2.5 * r, grain_diameter=grain_diameter,
                    seed=seed)  # fmt: skip
 
 
 def run_wheel(
-    body: Body,
+    body: Body | MeshIntruder | TriangleMesh,
     material: Material,
     *,
     load: float,
@@ -134,7 +145,14 @@ def run_wheel(
     written every ``checkpoint_interval`` wall-clock seconds [s] at a row boundary and when the run is
     interrupted; ``resume=True`` continues the run saved there (refused, naming them, if the inputs
     differ from the checkpoint's). ``stop_after_rows`` stops early (after writing a checkpoint), as an
-    interruption would; tests use it."""
+    interruption would; tests use it.
+
+    A 3D wheel is a :class:`~terradyn.geometry3d.TriangleMesh` (or a
+    :class:`~terradyn.dem.intruders.MeshIntruder`) centred on its axle, the y axis; it needs
+    ``kind="3d"`` (or a 3d ``bed``) and its radius is the largest vertex distance from the axle."""
+    body = as_intruder(body)
+    if isinstance(body, MeshIntruder) and not resume:
+        _mesh_bed(bed.spec.kind if bed is not None else BedKind.coerce(kind))
     r = _radius(body)
     if bed is not None:
         if gravity is not None and not math.isclose(gravity, bed.spec.gravity, rel_tol=1e-12):
@@ -193,14 +211,15 @@ def run_wheel(
         lmp.close()
 
 
-def _inputs(body: Body, material: Material, bed: Bed | None, **values: Any) -> dict[str, Any]:
+def _inputs(body: Body | MeshIntruder, material: Material, bed: Bed | None, **values: Any) -> dict[str, Any]:
     """The inputs that identify a wheel run (a resume must repeat them), as JSON loads them back.
     The bed's preparation counts only when this call prepares it."""
     from ..mpm.checkpoint import plain
 
     bed_made = {k: values.pop(k) for k in ("kind", "packing", "grain_diameter", "seed", "gravity")}
     dem = {k: v for k, v in plain(material.require_dem()).items() if k != "notes"}  # numbers only
-    out = {"run": "dem wheel", "body": plain(body), "material": material.name, "dem": dem, **values,
+    described = body.describe() if isinstance(body, MeshIntruder) else plain(body)
+    out = {"run": "dem wheel", "body": described, "material": material.name, "dem": dem, **values,
            "bed": "given" if bed is not None else plain(bed_made)}  # fmt: skip
     loaded: dict[str, Any] = json.loads(json.dumps(out, sort_keys=True))
     return loaded
@@ -220,8 +239,8 @@ def _check_inputs(ckpt: Path, saved: dict[str, Any], current: dict[str, Any]) ->
                          "inputs or remove the file")  # fmt: skip
 
 
-def _resume(ckpt: Path, inputs: dict[str, Any], body: Body, outputs: dict[str, Any], interval: float,
-            progress: Callable[[float, float], None] | None,
+def _resume(ckpt: Path, inputs: dict[str, Any], body: Body | MeshIntruder, outputs: dict[str, Any],
+            interval: float, progress: Callable[[float, float], None] | None,
             stop_after_rows: int | None) -> DEMWheelResult:  # fmt: skip
     params, history, step, frames = read_checkpoint(ckpt, "dem wheel")
     _check_inputs(ckpt, params["inputs"], inputs)
@@ -237,9 +256,9 @@ def _resume(ckpt: Path, inputs: dict[str, Any], body: Body, outputs: dict[str, A
         lmp.close()
 
 
-def _place_wheel(bed: Bed, body: Body, r: float, load: float, omega: float, velocity: float, slip: float,
-                 duration: float, travel: float, record_interval: float | None, material_name: str,
-                 inputs: dict[str, Any]) -> dict[str, Any]:  # fmt: skip
+def _place_wheel(bed: Bed, body: Body | MeshIntruder, r: float, load: float, omega: float, velocity: float,
+                 slip: float, duration: float, travel: float, record_interval: float | None,
+                 material_name: str, inputs: dict[str, Any]) -> dict[str, Any]:  # fmt: skip
     """Add the wheel's spheres above the bed, spinning and moving forward; its fixes; the run's
     parameters (what a resume needs)."""
     lmp, d, dt = bed.lmp, bed.dem.grain_diameter, bed.dt
@@ -370,7 +389,7 @@ def _result(params: dict[str, Any], history: dict[str, list[float]], recorder: F
                           snapshots=list(recorder.written))  # fmt: skip
 
 
-def _recorder(params: dict[str, Any], body: Body, outputs: dict[str, Any]) -> FieldRecorder:
+def _recorder(params: dict[str, Any], body: Body | MeshIntruder, outputs: dict[str, Any]) -> FieldRecorder:
     d, box = params["grain_diameter"], params["box"]
     mid = 0.5 * (box[2] + box[3])
     folder = outputs["snapshot_dir"]
