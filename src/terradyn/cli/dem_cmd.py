@@ -15,6 +15,8 @@ from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, s
 from .options import (
     ANGLE,
     ANIMATE,
+    DEFAULT_WHEEL_RADIUS,
+    DEFAULT_WHEEL_WIDTH,
     DIRECTION,
     FORMAT,
     MATERIAL,
@@ -204,6 +206,11 @@ def _intruder(body: BodyKind | None, mesh: str | None, units: str, bed: str, wid
         if units != "m":
             raise InputError("--mesh-units", units, "only with --mesh")
         return build_body(body, width, **sizes)
+    return _mesh_body(str(mesh), units, bed, sizes)
+
+
+def _mesh_body(mesh: str, units: str, bed: str, sizes: dict[str, Any]) -> Any:
+    """The 3D body of --mesh (centred on its bounding box); size flags and a slab bed refused."""
     given = {k: v for k, v in sizes.items() if v is not None}
     if given:
         key = next(iter(given))
@@ -348,6 +355,10 @@ def wheel(
     width: float = WHEEL_WIDTH,
     shape: str = typer.Option("circular", "--shape", help="Wheel shape: circular, grousered or flapped."),
     sizes: dict[str, Any] = {},  # the wheel size flags  # noqa: B006
+    mesh: str | None = typer.Option(
+        None, "--mesh", help="3D wheel (STL/OBJ/PLY) centred on its axle (y), in a --bed 3d; no size flags."
+    ),
+    mesh_units: str = typer.Option("m", "--mesh-units", help="Length unit of the --mesh file: m, cm or mm."),
     grain_diameter: float | None = DEMOptions.grain_diameter,
     packing: str = DEMOptions.packing,
     bed: str = DEMOptions.bed,
@@ -376,7 +387,17 @@ def wheel(
     from ..dem.wheel import run_wheel
     from .mpm_cmd import WHEEL_KEYS, _mpm_wheel
 
-    body = _mpm_wheel(shape, width, sizes)
+    if mesh is None:
+        if mesh_units != "m":
+            raise InputError("--mesh-units", mesh_units, "only with --mesh")
+        body = _mpm_wheel(shape, width, sizes)
+    else:
+        if shape != "circular":
+            raise InputError("--shape", shape, "no --shape with --mesh (the mesh is the wheel)")
+        if width != DEFAULT_WHEEL_WIDTH:
+            raise InputError("--width", width, "no --width with --mesh (the mesh sets the width)")
+        given = {k: v for k, v in sizes.items() if not (k == "radius" and v == DEFAULT_WHEEL_RADIUS)}
+        body = _mesh_body(mesh, mesh_units, bed, given)  # --radius has a default: only another value counts
     out_path = out_file("--out", out)
     series_path = out_file("--series", series, (".csv",))
     ckpt = check_checkpoint(checkpoint, resume)
@@ -408,7 +429,8 @@ def wheel(
         return
     if series_path is not None:
         atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
-    outs.write(res, f"DEM {shape} wheel in {mat.name}, slip {slip:g}")
+    label = shape if mesh is None else Path(mesh).name
+    outs.write(res, f"DEM {label} wheel in {mat.name}, slip {slip:g}")
     if ckpt is not None:  # the run finished: its checkpoint is no longer needed
         from ..dem.runs import checkpoint_files
 
