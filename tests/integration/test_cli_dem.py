@@ -175,3 +175,30 @@ def test_dem_intrude_resumes_a_checkpoint(run_cli, soft_medium, tmp_path):
     assert code == 0, err
     assert json.loads(out)["force_z_N"] > 0
     assert not ckpt.exists()
+
+
+def test_the_same_command_runs_under_mpirun_on_two_ranks(soft_medium, tmp_path):
+    """LAMMPS decomposes the box over two MPI ranks (the mpich wheel's launcher); terradyn runs on
+    both, rank 0 alone prints and writes. The bed on two ranks is another realisation of the same bed
+    (grain sizes are drawn per rank), so its force is compared with the single-rank run loosely."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    launcher = Path(sys.executable).parent / "mpiexec"
+    if not launcher.is_file():
+        pytest.skip("no mpiexec beside the interpreter (the mpich wheel's)")
+    terradyn = Path(sys.executable).parent / "terradyn"
+    args = [str(terradyn), "dem", *PLATE, "--material", soft_medium, "--packing", "loose", "--format", "json"]
+    env = {**os.environ, "NUMBA_NUM_THREADS": "1"}
+    runs = {}
+    for ranks in (1, 2):
+        series = tmp_path / f"series{ranks}.csv"
+        out = subprocess.run([str(launcher), "-np", str(ranks), *args, "--series", str(series)], env=env,
+                             capture_output=True, text=True, timeout=300)  # fmt: skip
+        assert out.returncode == 0, out.stderr
+        runs[ranks] = json.loads(out.stdout)  # one JSON object: rank 0 printed, rank 1 did not
+        assert series.is_file() and len(series.read_text().splitlines()) > 5
+    assert runs[2]["force_z_N"] > 0
+    assert 0.5 < runs[2]["force_z_N"] / runs[1]["force_z_N"] < 2.0

@@ -320,22 +320,26 @@ def intrude(
                             bed_spec=spec, record_spacing=spacing, checkpoint_path=ckpt,
                             checkpoint_interval=checkpoint_interval, resume=resume, progress=bar,
                             **outs.library(snap_every))  # fmt: skip
-    from ..dem._lammps import mpi_rank
+    from ..dem._lammps import mpi_barrier, mpi_rank
 
     if mpi_rank() != 0:  # under mpirun every rank has the result; rank 0 writes and prints it
+        mpi_barrier()  # wait for rank 0's outputs: a rank that exits ends the job
         return
-    if series_path is not None:
-        atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
-    title = f"DEM {label} in {mat.name}, {res.summary['grain_count']} grains"
-    if plot_path is not None:
-        plot_history(res, plot_path, title)
-    outs.write(res, f"DEM {label} in {mat.name}")
-    if ckpt is not None:  # the run finished: its checkpoint is no longer needed
-        from ..dem.runs import checkpoint_files
+    try:
+        if series_path is not None:
+            atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
+        title = f"DEM {label} in {mat.name}, {res.summary['grain_count']} grains"
+        if plot_path is not None:
+            plot_history(res, plot_path, title)
+        outs.write(res, f"DEM {label} in {mat.name}")
+        if ckpt is not None:  # the run finished: its checkpoint is no longer needed
+            from ..dem.runs import checkpoint_files
 
-        for p in checkpoint_files(ckpt):
-            p.unlink(missing_ok=True)
-    emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out_path)
+            for p in checkpoint_files(ckpt):
+                p.unlink(missing_ok=True)
+        emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out_path)
+    finally:
+        mpi_barrier()
 
 
 def _wheel_flags() -> Any:
@@ -423,20 +427,24 @@ def wheel(
                         packing=packing, grain_diameter=d, seed=seed, record_interval=record_interval,
                         checkpoint_path=ckpt, checkpoint_interval=checkpoint_interval, resume=resume,
                         progress=bar, **outs.library(snap_every))  # fmt: skip
-    from ..dem._lammps import mpi_rank
+    from ..dem._lammps import mpi_barrier, mpi_rank
 
     if mpi_rank() != 0:
+        mpi_barrier()  # wait for rank 0's outputs: a rank that exits ends the job
         return
-    if series_path is not None:
-        atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
-    label = shape if mesh is None else Path(mesh).name
-    outs.write(res, f"DEM {label} wheel in {mat.name}, slip {slip:g}")
-    if ckpt is not None:  # the run finished: its checkpoint is no longer needed
-        from ..dem.runs import checkpoint_files
+    try:
+        if series_path is not None:
+            atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
+        label = shape if mesh is None else Path(mesh).name
+        outs.write(res, f"DEM {label} wheel in {mat.name}, slip {slip:g}")
+        if ckpt is not None:  # the run finished: its checkpoint is no longer needed
+            from ..dem.runs import checkpoint_files
 
-        for p in checkpoint_files(ckpt):
-            p.unlink(missing_ok=True)
-    emit({k: res.summary[k] for k in WHEEL_KEYS if k in res.summary}, fmt, out_path)
+            for p in checkpoint_files(ckpt):
+                p.unlink(missing_ok=True)
+        emit({k: res.summary[k] for k in WHEEL_KEYS if k in res.summary}, fmt, out_path)
+    finally:
+        mpi_barrier()
 
 
 _SCHEDULER_HELP = "serial, processes (local cores), local (Dask) or a Dask scheduler address."
