@@ -506,5 +506,6 @@ register_row("fig-6-8", "mpm", "terradyn.mpm.report_rows:wheel_force_slip")
 
 # the chapter 9 rows of the drag runs and of superposition live in their own module; importing it
 # registers them
+from . import report_rows_ch6 as _report_rows_ch6  # noqa: E402, F401
 from . import report_rows_ch9 as _report_rows_ch9  # noqa: E402, F401
 from . import report_rows_ch48 as _report_rows_ch48  # noqa: E402, F401
