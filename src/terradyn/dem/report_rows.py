@@ -66,9 +66,11 @@ class _Depth:
 
 #: quick: a 24 mm plate of six 4 mm grains to 16 mm; full: a 50 mm x 20 mm plate (as the RFT and MPM
 #: rows) of 3 mm grains (the dem-alpha study's coarse-graining) to 60 mm, in the media whose [dem]
-#: tables have sources for their grains (generic, MS)
+#: tables differ once the grain size is set: MS (generic's table is MS's but for the grain size:
+#: measured, the same forces to the last digit), MMS (more friction and rolling resistance) and LPS
+#: (light seeds; CPS has LPS's table, the two differ in packing only)
 _DEPTH_QUICK = _Depth(("MS",), (0.024, 0.02), 0.016, 0.004, 0.05)
-_DEPTH_FULL = _Depth(("generic", "MS"), (0.05, 0.02), 0.06, 0.003, 0.04)
+_DEPTH_FULL = _Depth(("MS", "MMS", "LPS"), (0.05, 0.02), 0.06, 0.003, 0.04)
 
 
 def plate_depth(quick: bool) -> ItemOutput:
@@ -124,7 +126,7 @@ def plate_depth(quick: bool) -> ItemOutput:
     ax.set_xlabel("depth of the plate centre [mm]")
     ax.set_ylabel("vertical force F_z [N]")
     ax.set_title(f"Plate {length * 1e3:g} x {width * 1e3:g} mm pushed down: DEM (loose, "
-                 f"{s.grain_diameter * 1e3:g} mm grains, {s.speed:g} m/s) and RFT")  # fmt: skip
+                 f"{s.grain_diameter * 1e3:g} mm grains, {s.speed:g} m/s) and RFT", fontsize=10)  # fmt: skip
     ax.grid(True, alpha=0.35)
     ax.legend(fontsize=8, ncols=2)
     if quick:
