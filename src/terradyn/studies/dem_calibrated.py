@@ -35,7 +35,7 @@ from pydantic import Field
 from ..errors import InputError
 from ..geometry import Plate, WheelCircular
 from ..results import TableResult
-from .dem_scaling import DIMENSIONLESS, _medium
+from .dem_scaling import DIMENSIONLESS, _medium, check_case
 from .registry import StudyOutput, _Params, register_study
 
 __all__ = ["CalibratedWheelResult", "dem_calibrated_wheel", "plot_calibrated_wheel"]
@@ -136,13 +136,7 @@ def dem_calibrated_wheel(
         "mpm_cell_size": mpm_cell_size,
         "mpm_plate_speed": mpm_plate_speed,
     }
-    for name, value in positive.items():
-        if not (math.isfinite(value) and value > 0):
-            raise InputError(name, value, "a value > 0")
-    if not -1.0 < slip < 1.0:
-        raise InputError("slip", slip, "a slip in (-1, 1)")
-    if len(seeds) < 2 or len(set(seeds)) != len(seeds):
-        raise InputError("seeds", list(seeds), "two or more distinct bed seeds (the run-to-run spread)")
+    check_case(positive, slip, seeds)
     if mat.continuum is None:
         raise InputError("material", mat.name, "a medium with a [continuum] table (the MPM calibration)")
     load_lammps()

@@ -81,6 +81,18 @@ def _medium(material: str | Material, youngs_modulus: float | None) -> Material:
     )
 
 
+def check_case(positive: dict[str, float], slip: float, seeds: Sequence[int]) -> None:
+    """One line naming the first bad input of a DEM wheel case: ``positive`` values > 0, a slip in
+    (-1, 1), two or more distinct bed seeds."""
+    for name, value in positive.items():
+        if not (math.isfinite(value) and value > 0):
+            raise InputError(name, value, "a value > 0")
+    if not -1.0 < slip < 1.0:
+        raise InputError("slip", slip, "a slip in (-1, 1)")
+    if len(seeds) < 2 or len(set(seeds)) != len(seeds):
+        raise InputError("seeds", list(seeds), "two or more distinct bed seeds (the run-to-run spread)")
+
+
 def dem_gravity_pair(
     material: str | Material = "generic",
     *,
@@ -118,15 +130,9 @@ def dem_gravity_pair(
     mat = _medium(material, youngs_modulus)
     positive = {"gravity": gravity, "radius": radius, "width": width, "load": load, "omega": omega,
                 "travel": travel, "grain_diameter": grain_diameter}  # fmt: skip
-    for name, value in positive.items():
-        if not (math.isfinite(value) and value > 0):
-            raise InputError(name, value, "a value > 0")
-    if not -1.0 < slip < 1.0:
-        raise InputError("slip", slip, "a slip in (-1, 1)")
+    check_case(positive, slip, seeds)
     if not factors or any(not (math.isfinite(f) and f > 0) for f in factors):
         raise InputError("factors", list(factors), "one or more gravity ratios > 0")
-    if len(seeds) < 2 or len(set(seeds)) != len(seeds):
-        raise InputError("seeds", list(seeds), "two or more distinct bed seeds (the run-to-run spread)")
     load_lammps()
     body = WheelCircular(radius, width)
     base = WheelTest(body=body, material=mat, mass=load / gravity, omega=omega, gravity=gravity)
