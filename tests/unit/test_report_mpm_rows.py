@@ -16,14 +16,23 @@ MPM_ROWS = {
     "ch4-plate-depth": "terradyn.mpm.report_rows_ch48:plate_depth",
     "ch8-high-speed": "terradyn.mpm.report_rows_ch48:high_speed",
     "ch6-wheels-bc": "terradyn.mpm.report_rows_ch6:wheel_b_force_slip",
+    "ch6-flapped": "terradyn.mpm.report_rows_ch6:flapped_self_propelled",
 }
 
 
 def test_mpm_rows_are_registered_not_pending():
     for key, spec in MPM_ROWS.items():
         assert dict(rows_of(item(key)))["mpm"] == spec
-    # items whose MPM row is not written yet stay pending
-    assert dict(rows_of(item("ch6-flapped")))["mpm"] is None
+
+
+def test_flapped_speed_is_averaged_over_whole_flap_periods():
+    from terradyn.mpm.report_rows_ch6 import _flap_window
+
+    period = 2 * math.pi / 4  # 4 flaps at 1 rad/s
+    assert _flap_window(4.5, 4) == pytest.approx(period)  # 2.25 s of last half hold one period
+    assert _flap_window(10.0, 4) == pytest.approx(3 * period)
+    assert _flap_window(1.6, 4) == pytest.approx(period)  # only one period in the drive
+    assert _flap_window(1.0, 4) == pytest.approx(0.5)  # not even one: the last half
 
 
 @pytest.fixture(scope="module")
