@@ -13,15 +13,20 @@ from terradyn.errors import InputError
 from terradyn.studies.mpm_verification import strip_footing
 
 
-def _fake(n_gamma, slope, width=0.04, out_of_plane=0.01, noise=0.0, seed=0):
-    gamma = materials.get("MS").bulk_density * 9.81
-    calls = {}
+def _fake(n_gamma, slope, width=0.04, out_of_plane=0.01, noise=0.0, seed=0, per_offset=0.0):
+    """A stand-in solver whose bed has the density of a consolidated MS bed as terradyn makes it;
+    ``per_offset`` adds that much N_gamma per cell of grid surface offset."""
+    ms = materials.get("MS")
+    gamma = max(ms.bulk_density, 1.02 * ms.critical_density) * 9.81
+    calls = {"offsets": []}
     rng = np.random.default_rng(seed)
 
     def run(body, material, *, depth, **kw):
         calls.update(kw, depth=depth, length=body.length)
+        calls["offsets"].append(kw["bed"].surface_offset)
+        n_gamma_here = n_gamma + per_offset * kw["bed"].surface_offset
         s = np.linspace(-0.001, depth, 400)
-        q_u = 0.5 * gamma * width * n_gamma
+        q_u = 0.5 * gamma * width * n_gamma_here
         # elastic rise to the collapse pressure over 2 % of B, then the embedment line
         q = np.where(s < 0.02 * width, q_u * np.clip(s, 0, None) / (0.02 * width), q_u + gamma * slope * s)
         q = q + noise * q_u * rng.standard_normal(len(s))  # relative white noise on the pressure
@@ -80,3 +85,31 @@ def test_the_intercept_standard_error_matches_the_scatter_of_repeated_noisy_runs
     assert reported == pytest.approx(spread, rel=0.35)
     assert abs(np.mean([r.N_gamma_mpm for r in runs]) - 11.0) < 3 * spread / math.sqrt(40)
     assert "N_gamma_mpm_stderr" in runs[0].record()
+
+
+def test_the_unit_weight_is_that_of_the_bed_as_made():
+    """A consolidated bed is made at max(bulk, 1.02 critical) density (MS: 1591 against a bulk 1560
+    kg/m^3); N_gamma is normalised by that bed's unit weight, or by the density the bed is given."""
+    from terradyn.mpm.specs import Bed
+
+    ms = materials.get("MS")
+    res = strip_footing(30.0, "rough", run=_fake(11.0, 15.0)[0])
+    assert res.unit_weight_N_m3 == pytest.approx(1.02 * ms.critical_density * 9.81)
+    assert res.unit_weight_N_m3 > ms.bulk_density * 9.81
+    given = strip_footing(30.0, "rough", bed=Bed(density=1700.0), run=_fake(11.0, 15.0)[0])
+    assert given.unit_weight_N_m3 == pytest.approx(1700.0 * 9.81)
+
+
+def test_grid_phases_move_the_grid_and_report_the_mean_and_spread():
+    run, calls = _fake(11.0, 15.0, per_offset=4.0)
+    res = strip_footing(30.0, "rough", grid_phases=2, run=run)
+    assert calls["offsets"] == [0.0, 0.5]
+    assert [p[1] for p in res.phases] == pytest.approx([11.0, 13.0])
+    assert res.N_gamma_mpm == pytest.approx(12.0)
+    rec = res.record()
+    assert rec["grid_phases"] == 2 and rec["surface_offsets"] == [0.0, 0.5]
+    assert rec["N_gamma_phase_spread"] == pytest.approx(2.0)
+    one = strip_footing(30.0, "rough", run=_fake(11.0, 15.0)[0])
+    assert "grid_phases" not in one.record() and len(one.phases) == 1
+    with pytest.raises(InputError, match="grid_phases"):
+        strip_footing(30.0, "rough", grid_phases=3, run=run)  # 2 points per cell: phases 1 or 2

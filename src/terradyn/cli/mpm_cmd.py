@@ -681,6 +681,12 @@ def verify_strip_footing(
     ),
     particles_per_cell: int = MPMOptions.ppc,
     volumetric: str = MPMOptions.volumetric,
+    grid_phases: int = typer.Option(
+        1,
+        "--grid-phases",
+        help="Repeat the run with the grid moved by k/N of a cell against the surface (N divides "
+        "--particles-per-cell) and report the mean with each phase's value and the spread.",
+    ),
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = typer.Option(
@@ -705,7 +711,7 @@ def verify_strip_footing(
     with fraction_progress("MPM strip footing", "s") as bar:
         res = strip_footing(
             phi, base, material=material, width=width, cell_size=cell_size,
-            settlement_ratio=settlement_ratio, progress=bar,
+            settlement_ratio=settlement_ratio, progress=bar, grid_phases=grid_phases,
             resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric),
         )  # fmt: skip
     if plot_path is not None:

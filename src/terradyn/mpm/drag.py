@@ -122,7 +122,9 @@ def _drag_bed(seg: np.ndarray, c: _Common, depth: float, distance: float, sense:
     bed_depth = depth + reach + below if bed_depth is None else bed_depth
     bed_length = distance + 2.0 * (reach + ahead) if bed_length is None else bed_length
     check_positive("bed_width", bed_length)
-    grid = BedGrid(bed_length, bed_depth, 2.0 * reach + 4.0 * h, h, -0.5 * bed_length, c.walls)
+    grid = BedGrid(
+        bed_length, bed_depth, 2.0 * reach + 4.0 * h, h, -0.5 * bed_length, c.walls, c.bed.surface_offset
+    )
     if -depth - reach < -grid.depth + h:
         raise InputError(
             "bed_depth",

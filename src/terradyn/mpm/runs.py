@@ -331,7 +331,7 @@ def _intrusion_bed(seg, c: _Common, depth, window, direction, angle):
         bed_width = x_path[1] - x_path[0] + 2 * (reach + side)
     check_positive("bed_width", bed_width)
     x_left = 0.5 * (x_path[0] + x_path[1]) - 0.5 * bed_width
-    grid = BedGrid(bed_width, bed_depth, z_start + reach + 4 * h, h, x_left, c.walls)
+    grid = BedGrid(bed_width, bed_depth, z_start + reach + 4 * h, h, x_left, c.walls, c.bed.surface_offset)
     if -(depth + 0.5 * window) - reach < -bed_depth + h:
         raise InputError(
             "bed_depth",

@@ -17,7 +17,7 @@ from typing import Any
 import numba
 import numpy as np
 
-from ..errors import InputError, SolverError, check_positive, check_range
+from ..errors import InputError, SolverError, check_finite, check_positive, check_range
 from . import _kernels as K
 from .bodies import BodyState, body_segments_world
 from .checkpoint import load_checkpoint, save_checkpoint, write_snapshot
@@ -71,6 +71,13 @@ class BedGrid:
     is not a whole number of cells put the surface up to half a cell above z = 0, and a bed width change
     shifted the grid under the body by half a cell: each changed a 60 mm plate's force at 10 mm cells
     by 12 %, which had read as a wall effect.)
+
+    ``surface_offset`` (a fraction of a cell in [0, 1), default 0) adds that fraction of a cell to the
+    depth: the surface stays at z = 0 and the floor on a node line, and the node lines sit
+    ``surface_offset`` cells below the surface and a whole number of cells below that. It moves the grid
+    against the grains and the body by a known phase; a result that changes with it carries a
+    discretisation error of that size (the grid-phase spread of
+    :func:`terradyn.studies.mpm_verification.strip_footing`).
     """
 
     width: float
@@ -79,18 +86,22 @@ class BedGrid:
     cell_size: float
     x_left: float = 0.0
     walls: Walls = field(default_factory=Walls)
+    surface_offset: float = field(default=0.0, metadata={"omit_default": True})
 
     def __post_init__(self) -> None:
         check_positive("cell_size", self.cell_size)
         check_positive("bed_width", self.width)
         check_positive("bed_depth", self.depth)
         check_positive("air_height", self.air, allow_zero=True)
+        off = check_surface_offset(self.surface_offset)
         h = self.cell_size
         left = math.floor(self.x_left / h + 1e-9)
         right = math.ceil((self.x_left + self.width) / h - 1e-9)
         object.__setattr__(self, "x_left", left * h)
         object.__setattr__(self, "width", (right - left) * h)
-        object.__setattr__(self, "depth", math.ceil(self.depth / h - 1e-9) * h)
+        # idempotent: a depth that already carries the offset keeps its whole cells
+        deep = max(1, math.ceil(self.depth / h - off - 1e-9))
+        object.__setattr__(self, "depth", (deep + off) * h)
         for name, value in (("bed_width", self.width), ("bed_depth", self.depth)):
             if value < 4 * self.cell_size:
                 raise InputError(
@@ -130,6 +141,14 @@ class BedGrid:
         nz = self.shape[1]
         z_top = self.origin[1] + (nz - 1 - GRID_PAD) * self.cell_size
         return np.array([self.x_left, self.x_right, -self.depth, z_top])
+
+
+def check_surface_offset(value: float) -> float:
+    """``value`` as a grid surface offset: a fraction of a cell in [0, 1)."""
+    value = check_finite("surface_offset", value)
+    if not 0.0 <= value < 1.0:
+        raise InputError("surface_offset", value, "a fraction of a cell in [0, 1)")
+    return float(value)
 
 
 @dataclass
@@ -174,6 +193,14 @@ class ParticleState:
         }
 
 
+def initial_density(bulk: float, critical: float, packing: BedPacking | str) -> float:
+    """Default density [kg/m^3] of a fresh bed of ``packing`` (as :func:`make_bed` makes it): consolidated
+    ``max(bulk, 1.02 critical)``, unconsolidated ``0.98 critical``."""
+    if BedPacking(packing) is BedPacking.CONSOLIDATED:
+        return max(float(bulk), 1.02 * float(critical))
+    return 0.98 * float(critical)
+
+
 def make_bed(
     model: GranularModel,
     grid: BedGrid,
@@ -198,7 +225,7 @@ def make_bed(
         raise InputError("particles_per_cell", particles_per_cell, "1, 2, 3 or 4 per direction")
     rc = model.critical_density
     if packing is BedPacking.CONSOLIDATED:
-        rho = max(model.bulk_density, 1.02 * rc) if density is None else density
+        rho = initial_density(model.bulk_density, rc, packing) if density is None else density
         check_range(
             "bed_density",
             rho,
@@ -208,7 +235,7 @@ def make_bed(
             hint="a consolidated bed is denser than the critical density",
         )
     else:
-        rho = 0.98 * rc if density is None else density
+        rho = initial_density(model.bulk_density, rc, packing) if density is None else density
         check_range(
             "bed_density",
             rho,
@@ -219,10 +246,18 @@ def make_bed(
         )
     h = grid.cell_size
     ncx = round(grid.width / h)
-    ncz = round(grid.depth / h)
+    # rows of points h / ppc apart from the floor up to the surface (whole cells plus the offset)
+    rows = round(grid.depth * ppc / h)
+    if abs(rows - grid.depth * ppc / h) > 1e-6:
+        raise InputError(
+            "surface_offset",
+            grid.surface_offset,
+            f"a multiple of 1 / particles_per_cell (1/{ppc})",
+            "the points fill the bed in rows h / particles_per_cell apart",
+        )
     off = (np.arange(ppc) + 0.5) / ppc
     cx = (np.arange(ncx)[:, None] + off[None, :]).ravel() * h + grid.x_left
-    cz = (np.arange(ncz)[:, None] + off[None, :]).ravel() * h - grid.depth
+    cz = ((np.arange(rows // ppc + 1)[:, None] + off[None, :]).ravel() * h - grid.depth)[:rows]
     zz, xx = np.meshgrid(cz, cx, indexing="ij")  # rows of constant z
     pos = np.ascontiguousarray(np.stack([xx.ravel(), zz.ravel()], axis=1))
     n = len(pos)
@@ -439,7 +474,7 @@ class Runner:
         cells = math.ceil(self.window / h - 1e-9)
         first, last = round(bed.x_left / h), round(bed.x_left / h) + round(bed.width / h) - cells
         left = min(max(round(x_body / h - 0.5 * cells), first), last)
-        return BedGrid(cells * h, bed.depth, bed.air, h, left * h, bed.walls)
+        return BedGrid(cells * h, bed.depth, bed.air, h, left * h, bed.walls, bed.surface_offset)
 
     def _gather(self) -> None:
         """Take the bed particles within the window as the stepped set. Stepped particles stay inside

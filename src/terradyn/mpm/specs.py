@@ -125,6 +125,10 @@ class Bed(_Spec):
         :class:`~terradyn.mpm.solver.Runner`); 0 = the whole bed. None = the case's rule: a wheel
         run keeps the wheel and its bed margin on either side (the bed around its start), an
         intrusion steps the whole bed. :class:`~terradyn.mpm.MPMTerrain` steps the whole bed.
+    surface_offset : the grid's phase against the free surface, a fraction of a cell in [0, 1) and a
+        multiple of 1 / ``particles_per_cell`` (default 0: the surface on a node line; see
+        :class:`~terradyn.mpm.solver.BedGrid`). Runs at several offsets measure how much a result
+        depends on where the grid lies.
     """
 
     packing: BedPacking | str = BedPacking.CONSOLIDATED
@@ -135,6 +139,7 @@ class Bed(_Spec):
     width: float | None = None
     settle_time: float | None = None
     window: float | None = None
+    surface_offset: float = field(default=0.0, metadata={"omit_default": True})
 
     _NAMES: ClassVar[dict[str, str]] = {"density": "bed_density", "depth": "bed_depth", "width": "bed_width"}
 
@@ -154,6 +159,9 @@ class Bed(_Spec):
         _optional_positive("bed_width", self.width)
         _optional_positive("settle_time", self.settle_time, allow_zero=True)
         _optional_positive("window", self.window, allow_zero=True)
+        from .solver import check_surface_offset
+
+        _set(self, "surface_offset", check_surface_offset(self.surface_offset))
 
 
 #: the choices of :attr:`Resolution.volumetric`

@@ -95,7 +95,13 @@ class MPMTerrain:
         air = depth if air is None else air
         x_left = -0.5 * width if x_left is None else float(x_left)
         self.grid = BedGrid(
-            float(width), float(depth), float(air), float(cell), x_left, Walls.coerce(bed.walls)
+            float(width),
+            float(depth),
+            float(air),
+            float(cell),
+            x_left,
+            Walls.coerce(bed.walls),
+            bed.surface_offset,
         )
         self.packing = BedPacking(bed.packing)
         self.bed_density = bed.density

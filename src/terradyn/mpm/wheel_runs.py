@@ -76,7 +76,9 @@ def _wheel_bed(seg, c: _Common, travel, v_forward):
     bed_length = travel + 2.0 * (reach + margin) if bed_length is None else bed_length
     check_positive("bed_length", bed_length)
     x_start = -0.5 * travel if v_forward >= 0 else 0.5 * travel
-    grid = BedGrid(bed_length, bed_depth, 2.0 * reach + 4 * h, h, -0.5 * bed_length, c.walls)
+    grid = BedGrid(
+        bed_length, bed_depth, 2.0 * reach + 4 * h, h, -0.5 * bed_length, c.walls, c.bed.surface_offset
+    )
     if 0.5 * travel + reach > 0.5 * bed_length:
         raise InputError(
             "bed_length", bed_length, f"at least {travel + 2 * reach:.4g} m", "the wheel leaves the bed"

@@ -63,8 +63,10 @@ class StripFootingResult:
     at the reading settlement ``settlement_m`` (pressure ``pressure_Pa``), ``embedment_slope`` the
     fitted dq/ds over gamma [-] and ``N_q_reduced`` N_q(phi*) to compare it with, ``unit_weight_N_m3`` gamma,
     ``reference`` (dict from :func:`terradyn.plasticity.strip_footing_reference`, or empty when that
-    package has no value), ``curve`` (settlement [m], pressure [Pa]) of the whole run; ``particles_per_cell``
-    and ``volumetric`` the discretisation (:class:`terradyn.mpm.specs.Resolution`)."""
+    package has no value), ``curve`` (settlement [m], pressure [Pa]) of the whole run (the first grid
+    phase's); ``particles_per_cell`` and ``volumetric`` the discretisation
+    (:class:`terradyn.mpm.specs.Resolution`); ``phases`` each grid phase's surface offset, intercept
+    and curve (the readings above are then the phases' means, ``N_gamma_stderr`` that of the mean)."""
 
     friction_angle_deg: float
     base: FootingBase
@@ -84,6 +86,8 @@ class StripFootingResult:
     final_segments: np.ndarray | None = None
     particles_per_cell: int = 2
     volumetric: str = "point"
+    #: one (surface offset [cells], N_gamma intercept, (s, q) curve) per grid phase
+    phases: tuple[tuple[float, float, tuple[np.ndarray, np.ndarray]], ...] = ()
 
     def record(self) -> dict[str, Any]:
         rec: dict[str, Any] = {
@@ -103,6 +107,12 @@ class StripFootingResult:
             "embedment_slope": self.embedment_slope,
             "N_q_reduced": self.N_q_reduced,
         }
+        if len(self.phases) > 1:
+            values = [p[1] for p in self.phases]
+            rec["grid_phases"] = len(self.phases)
+            rec["surface_offsets"] = [p[0] for p in self.phases]
+            rec["N_gamma_phase_values"] = values
+            rec["N_gamma_phase_spread"] = max(values) - min(values)
         ref = rec["N_gamma_reference"]
         if ref:
             rec["ratio_mpm_to_reference"] = self.N_gamma_mpm / float(ref)
@@ -118,6 +128,33 @@ class StripFootingResult:
             else (lower is None or self.N_gamma_mpm >= lower) and (upper is None or self.N_gamma_mpm <= upper)
         )
         return rec
+
+
+def _read(res: Any, width: float, out_of_plane: float, settlement: float, gamma: float) -> tuple[Any, ...]:
+    """``(N_gamma intercept, N_gamma raw, its standard error, pressure at the reading [Pa], embedment
+    slope / gamma [-], (s [m], q [Pa]) curve)`` of one footing run of ``width`` B [m]."""
+    df = res.to_dataframe()
+    s = df["depth_m"].to_numpy()
+    q = df["force_z_N"].to_numpy() / (width * out_of_plane)
+    touching = s > 0
+    if not np.any(touching):
+        raise SolverError("the footing never reached the bed")
+    fit = (s >= 0.5 * settlement) & (s <= 1.5 * settlement)
+    if np.count_nonzero(fit) < 4:
+        raise SolverError(f"too few records between {0.5 * settlement:.4g} and {1.5 * settlement:.4g} m")
+    slope, intercept = np.polyfit(s[fit], q[fit], 1)
+    q_stderr = _intercept_stderr(s[fit], q[fit], float(slope), float(intercept))
+    near = np.abs(s - settlement) <= 0.1 * settlement
+    q_read = float(q[near].mean()) if np.any(near) else float(intercept + slope * settlement)
+    to_n = 2.0 / (gamma * width)
+    return (
+        to_n * float(intercept),
+        to_n * q_read,
+        to_n * q_stderr,
+        q_read,
+        float(slope) / gamma,
+        (s[touching], q[touching]),
+    )
 
 
 def _reference(phi_deg: float, base: FootingBase) -> dict[str, Any]:
@@ -164,6 +201,7 @@ def strip_footing(
     speed: float = 0.02,
     bed: Bed | None = None,
     resolution: Resolution | None = None,
+    grid_phases: int = 1,
     progress: Callable[[float, float], None] | None = None,
     run: Callable[..., Any] | None = None,
 ) -> StripFootingResult:
@@ -171,8 +209,11 @@ def strip_footing(
     continuum friction is set to sin(``friction_angle_deg``) (plane strain); ``base`` rough or smooth.
     ``cell_size`` [m] (default B/20; or ``resolution.cell_size``), ``speed`` [m/s],
     ``settlement_ratio`` s/B of the reading; ``bed`` and ``resolution`` (:mod:`terradyn.mpm.specs`)
-    as in :func:`terradyn.mpm.run_intrusion`. ``run`` replaces :func:`terradyn.mpm.run_intrusion`
-    (tests)."""
+    as in :func:`terradyn.mpm.run_intrusion`. ``grid_phases`` n > 1 repeats the run with the grid moved
+    against the surface by k / n of a cell (``Bed.surface_offset``, k = 0..n-1; n must divide
+    ``particles_per_cell``) and reports the mean reading with the phases' values and spread: the
+    pressure steps up each time the base crosses a node line, so the reading depends on where the grid
+    lies (docs/mpm.md). ``run`` replaces :func:`terradyn.mpm.run_intrusion` (tests)."""
     from .. import materials
     from ..geometry import Plate
     from ..mpm.specs import Bed, Outputs, Resolution, Stroke
@@ -211,51 +252,69 @@ def strip_footing(
             f"at most {settlement / 2:.4g} m",
             "the reading settlement must span two cells or more",
         )
-    out_of_plane = 0.01
-    res = run(
-        Plate(length=b, width=out_of_plane),
-        mat,
-        depth=1.5 * settlement,
-        speed=speed,
-        bed=bed,
-        resolution=resolution.replace(cell_size=h),
-        outputs=Outputs(record_spacing=min(0.25 * h, 0.02 * settlement), progress=progress),
-        stroke=Stroke(averaging_window=0.2 * settlement),
-        friction_coefficient=mu,
-        poisson_ratio=nu,
-        surface_friction=ROUGH_FRICTION if base is FootingBase.rough else 0.0,
+    ppc = resolution.particles_per_cell
+    if not isinstance(grid_phases, int) or grid_phases < 1 or ppc % grid_phases != 0:
+        raise InputError(
+            "grid_phases",
+            grid_phases,
+            f"a divisor of the points per cell along an axis ({ppc})",
+            "each phase moves the grid by a whole number of point rows",
+        )
+    from ..mpm.model import resolve_model
+    from ..mpm.solver import initial_density
+
+    model = resolve_model(mat)
+    # the unit weight of the bed as it is made (a consolidated bed: 1.02 critical density by default)
+    rho = (
+        bed.density
+        if bed.density is not None
+        else initial_density(model.bulk_density, model.critical_density, bed.packing)
     )
-    df = res.to_dataframe()
-    s = df["depth_m"].to_numpy()
-    q = df["force_z_N"].to_numpy() / (b * out_of_plane)
-    touching = s > 0
-    if not np.any(touching):
-        raise SolverError("the footing never reached the bed")
-    fit = (s >= 0.5 * settlement) & (s <= 1.5 * settlement)
-    if np.count_nonzero(fit) < 4:
-        raise SolverError(f"too few records between {0.5 * settlement:.4g} and {1.5 * settlement:.4g} m")
-    slope, intercept = np.polyfit(s[fit], q[fit], 1)
-    q_stderr = _intercept_stderr(s[fit], q[fit], float(slope), float(intercept))
-    near = np.abs(s - settlement) <= 0.1 * settlement
-    q_read = float(q[near].mean()) if np.any(near) else float(intercept + slope * settlement)
-    gamma = (mat.bulk_density if bed.density is None else bed.density) * bed.gravity
-    n_raw = 2.0 * q_read / (gamma * b)
-    n_corr = 2.0 * float(intercept) / (gamma * b)
+    gamma = rho * bed.gravity
+    out_of_plane = 0.01
+    readings = []
+    for k in range(grid_phases):
+        offset = (bed.surface_offset + k / grid_phases) % 1.0
+        phase_progress = None
+        if progress is not None:
+
+            def phase_progress(done: float, total: float, k: int = k) -> None:
+                progress(k * total + done, grid_phases * total)
+
+        res = run(
+            Plate(length=b, width=out_of_plane),
+            mat,
+            depth=1.5 * settlement,
+            speed=speed,
+            bed=bed.replace(surface_offset=offset),
+            resolution=resolution.replace(cell_size=h),
+            outputs=Outputs(record_spacing=min(0.25 * h, 0.02 * settlement), progress=phase_progress),
+            stroke=Stroke(averaging_window=0.2 * settlement),
+            friction_coefficient=mu,
+            poisson_ratio=nu,
+            surface_friction=ROUGH_FRICTION if base is FootingBase.rough else 0.0,
+        )
+        readings.append((offset, res, *_read(res, b, out_of_plane, settlement, gamma)))
+    first = readings[0]
+    res = first[1]
+    n_phase = [r[2] for r in readings]
+    stderr = math.sqrt(sum(r[4] ** 2 for r in readings)) / grid_phases
     return StripFootingResult(
         friction_angle_deg=phi_deg,
         base=base,
         width_m=b,
         cell_size_m=h,
-        N_gamma_mpm=n_corr,
-        N_gamma_raw=n_raw,
-        N_gamma_stderr=2.0 * q_stderr / (gamma * b),
-        pressure_Pa=q_read,
+        N_gamma_mpm=float(np.mean(n_phase)),
+        N_gamma_raw=float(np.mean([r[3] for r in readings])),
+        N_gamma_stderr=stderr,
+        pressure_Pa=float(np.mean([r[5] for r in readings])),
         settlement_m=settlement,
-        embedment_slope=float(slope) / gamma,
+        embedment_slope=float(np.mean([r[6] for r in readings])),
         N_q_reduced=_nq_reduced(phi),
         unit_weight_N_m3=gamma,
         reference=_reference(phi_deg, base),
-        curve=(s[touching], q[touching]),
+        curve=first[7],
+        phases=tuple((r[0], r[2], r[7]) for r in readings),
         final_particles=getattr(res, "final_particles", None),
         final_segments=None if getattr(res, "final_frame", None) is None else res.final_frame["segments"],
         particles_per_cell=resolution.particles_per_cell,
