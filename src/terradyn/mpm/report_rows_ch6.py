@@ -140,10 +140,11 @@ class _Flapped:
 #: the study's wheel (hub radius 50 mm, 50 mm wide) under its larger load on its first medium
 _FLAP_HUB, _FLAP_WIDTH, _FLAP_LOAD, _FLAP_MEDIUM, _FLAP_OMEGA = 0.05, 0.05, 10.0, "CPS", 1.0
 #: quick: one design at 25 mm cells (8 across the outer diameter: a smoke run), 1.6 s (one flap period
-#: and a little); full: four flap counts at L / r = 1 and two shorter flaps at 4 flaps, 6.25 mm cells
-#: (32 across), 4.5 s (4.5 rad). The speed is averaged over whole flap periods (_flap_window).
+#: and a little); full: three flap counts at L / r = 1 and a shorter flap at 4 flaps, 8.33 mm cells
+#: (24 across the outer diameter, 6 along a 50 mm flap), 4.5 s (4.5 rad). The speed is averaged over
+#: whole flap periods (_flap_window).
 _FLAP_QUICK = _Flapped(((4, 1.0),), 0.025, 1.6)
-_FLAP_FULL = _Flapped(((3, 1.0), (4, 1.0), (6, 1.0), (8, 1.0), (4, 0.5), (4, 0.25)), 0.00625, 4.5)
+_FLAP_FULL = _Flapped(((3, 1.0), (4, 1.0), (6, 1.0), (4, 0.5)), 0.2 / 24, 4.5)
 _FLAP_QUICK_NOTE = "quick form: 25 mm cells (8 across the wheel); a smoke run, not converged"
 #: a design agrees when the two normalised speeds differ by at most this
 _FLAP_SPEED_TOLERANCE = 0.1
