@@ -4,6 +4,7 @@ grains it displaces removed, the refusals, and (slow) a plate ploughing deeper m
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 
 import numpy as np
@@ -78,3 +79,20 @@ def test_a_deeper_plate_meets_more_drag(medium):
             for seed in (1, 2)
         ])  # fmt: skip
     assert drags[0.03] > 2.5 * drags[0.015]
+
+
+def test_dem_drag_command_runs_and_refuses_bad_input_in_one_line(run_cli, tmp_path):
+    series = tmp_path / "drag.csv"
+    args = ["dem", "drag", "plate", "--length", "0.035", "--angle", "90", "--depth", "0.0125"]
+    code, out, err = run_cli(*args, "--distance", "0.01", "--speed", "0.1", "--grain-diameter", "0.005",
+                             "--format", "json", "--series", str(series))  # fmt: skip
+    assert code == 0, err
+    summary = json.loads(out)
+    assert summary["drag_N"] > 0 and summary["deleted_grains"] > 0
+    assert series.read_text().splitlines()[0].startswith("time_s,travel_m")
+    for flag, value, word in (("--distance", "-1", "--distance"), ("--packing", "medium", "--packing"),
+                              ("--grain-diameter", "1", "--grain-diameter")):  # fmt: skip
+        extra = ["--distance", "0.01"] if flag != "--distance" else []
+        code, out, err = run_cli(*args, *extra, flag, value)
+        assert code == 1 and out == "" and "Traceback" not in err
+        assert err.count("\n") == 1 and word in err

@@ -342,6 +342,67 @@ def intrude(
         mpi_barrier()
 
 
+@app.command("drag")
+@with_flags("sizes", BODY_SIZE_FLAGS)
+def drag(
+    body: BodyKind = typer.Argument(..., help="Body shape."),
+    depth: float = typer.Option(
+        ..., "--depth", help="Depth [m] of the body's reference point below the surface (fixed)."
+    ),
+    distance: float = typer.Option(..., "--distance", help="Distance [m] the body is dragged along +x."),
+    angle: float = ANGLE,
+    speed: float = typer.Option(0.05, "--speed", help="Drag speed [m/s]."),
+    material: str = MATERIAL,
+    width: float = BodyOptions.width,
+    sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
+    grain_diameter: float | None = DEMOptions.grain_diameter,
+    packing: str = DEMOptions.packing,
+    seed: int = DEMOptions.seed,
+    series: str | None = DEMOptions.series,
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+) -> None:
+    """Drag BODY horizontally through a DEM slab bed at a fixed --depth (placed in the settled bed, the
+    grains it overlaps removed); mean drag and lift over the last half of the travel."""
+    from ..dem import load_lammps
+    from ..dem.drag import run_drag
+
+    shape = build_body(body, width, **sizes)
+    out_path = out_file("--out", out)
+    series_path = out_file("--series", series, (".csv",))
+    for flag, value in (("--speed", speed), ("--distance", distance)):
+        if not check_finite(flag, value) > 0:
+            raise InputError(flag, value, "a value > 0")
+    depth = check_finite("--depth", depth)
+    if packing not in ("dense", "loose"):
+        raise InputError("--packing", packing, "dense or loose")
+    mat = materials.get(material)
+    d = grain_diameter if grain_diameter is not None else mat.require_dem().grain_diameter
+    d = check_finite("--grain-diameter", d)
+    if not 1e-6 <= d <= 0.1:
+        raise InputError("--grain-diameter", d, "a diameter in [1e-06, 0.1] [m]")
+    theta = math.radians(check_finite("--angle", angle))
+    load_lammps()  # one clear line now if the extra is missing
+    with fraction_progress("DEM drag", "m travelled") as bar:
+        res = run_drag(shape, mat, depth=depth, distance=distance, speed=speed, angle=theta,
+                       packing=packing, grain_diameter=d, seed=seed, progress=bar)  # fmt: skip
+    from ..dem._lammps import mpi_barrier, mpi_rank
+
+    if mpi_rank() != 0:  # under mpirun rank 0 writes and prints
+        mpi_barrier()
+        return
+    try:
+        if series_path is not None:
+            import pandas as pd
+
+            table = pd.DataFrame(res.history).to_csv(index=False)
+            atomic_write_text(series_path, table, field_name="--series")
+        keys = ("drag_N", "lift_N", "drag_std_N", "grain_count", "deleted_grains")
+        emit({k: res.summary[k] for k in keys}, fmt, out_path)
+    finally:
+        mpi_barrier()
+
+
 def _wheel_flags() -> Any:
     from .mpm_cmd import _mpm_wheel_flags
 
