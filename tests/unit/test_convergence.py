@@ -127,3 +127,50 @@ def test_the_measured_plate_sequence_rings_and_gets_a_least_squares_limit():
     assert row["ls_extrapolated"] == pytest.approx(164.7, abs=0.1)
     assert row["relative_error_finest_ls"] == pytest.approx(178.8 / fit.extrapolated - 1)
     assert converge(lambda h: {"f": 1.0 + h}, sizes[:3], ["f"]).fits == {}
+
+
+def test_grid_phases_average_a_ringing_that_depends_on_where_the_grid_lies():
+    """A force F0 + C h^2 + A cos(2 pi (D / h + offset)): one phase per cell size rings with h; the mean
+    of two phases half a cell apart cancels the ringing, so the limit comes out at F0."""
+    f0, c, a, depth = 100.0, 2.0e5, 6.0, 0.04
+
+    def run(h, offset=0.0):
+        return {"f": f0 + c * h * h + a * math.cos(2 * math.pi * (depth / h + offset))}
+
+    sizes = [0.01, 0.0075, 0.006, 0.005, 0.004]
+    one = converge(run, sizes, ["f"])
+    two = converge(run, sizes, ["f"], grid_phases=2)
+    assert two.metadata["grid_phases"] == 2 and "grid_phases" not in one.metadata
+    assert two.fits["f"].extrapolated == pytest.approx(f0, abs=1e-6)
+    assert abs(one.fits["f"].extrapolated - f0) > 1.0  # the single phase is thrown off by the ringing
+    (row, *_) = two.runs()
+    assert row["f_phase_spread"] == pytest.approx(2 * a * abs(math.cos(2 * math.pi * depth / 0.01)), rel=1e-9)
+    calls = []
+    converge(
+        lambda h, offset: calls.append((h, offset)) or {"f": 1.0}, [0.03, 0.02, 0.01], ["f"], grid_phases=2
+    )
+    assert calls == [(0.03, 0.0), (0.03, 0.5), (0.02, 0.0), (0.02, 0.5), (0.01, 0.0), (0.01, 0.5)]
+    with pytest.raises(InputError, match="grid_phases"):
+        converge(run, sizes, ["f"], grid_phases=0)
+
+
+def test_converge_intrusion_moves_the_bed_grid_per_phase(monkeypatch):
+    import terradyn.mpm as mpm
+    from terradyn.mpm.specs import Bed, Resolution
+    from terradyn.studies.convergence import converge_intrusion
+
+    seen = []
+
+    def fake(body, material, *, resolution, bed=None, **kw):
+        seen.append((resolution.cell_size, bed.surface_offset, bed.packing.value))
+        return type("R", (), {"summary": {"force_z_N": 1.0}})()
+
+    monkeypatch.setattr(mpm, "run_intrusion", fake)
+    converge_intrusion(None, None, cell_sizes=[0.03, 0.02, 0.01], quantities=["force_z_N"], grid_phases=2,
+                       depth=0.01, bed=Bed(packing="unconsolidated"))  # fmt: skip
+    assert seen[:2] == [(0.03, 0.0, "unconsolidated"), (0.03, 0.5, "unconsolidated")] and len(seen) == 6
+    with pytest.raises(InputError, match="grid_phases"):  # 3 phases need 3 points per cell
+        converge_intrusion(None, None, cell_sizes=[0.03, 0.02, 0.01], grid_phases=3, depth=0.01)
+    with pytest.raises(InputError, match="grid_phases"):
+        converge_intrusion(None, None, cell_sizes=[0.03, 0.02, 0.01], grid_phases=2, depth=0.01,
+                           resolution=Resolution(particles_per_cell=3))  # fmt: skip

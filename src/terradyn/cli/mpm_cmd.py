@@ -553,6 +553,12 @@ app.add_typer(converge_app, name="converge")
 CELL_SIZES = typer.Option(
     ..., "--cell-sizes", help="Three or more cell sizes [m]: a comma list or start:stop:count."
 )
+GRID_PHASES = typer.Option(
+    1,
+    "--grid-phases",
+    help="Run each cell size N times with the grid moved by k/N of a cell against the surface (N "
+    "divides --particles-per-cell) and use the mean; each phase's spread is reported.",
+)
 
 
 def _cell_sizes(text: str) -> list[float]:
@@ -592,6 +598,7 @@ def converge_intrude(
     volumetric: str = MPMOptions.volumetric,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
+    grid_phases: int = GRID_PHASES,
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = typer.Option(None, "--plot", help="Force against cell size (.png/.pdf/.svg/.jpg)."),
@@ -616,6 +623,7 @@ def converge_intrude(
             speed=speed,
             bed=Bed(packing=packing, walls=walls),
             resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric),
+            grid_phases=grid_phases,
         )
     _emit_convergence(res, fmt, out_path, plot_path, f"MPM {body.value} intrusion")
 
@@ -635,6 +643,7 @@ def converge_wheel_cmd(
     particles_per_cell: int = MPMOptions.ppc,
     volumetric: str = MPMOptions.volumetric,
     packing: str = MPMOptions.packing,
+    grid_phases: int = GRID_PHASES,
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = typer.Option(None, "--plot", help="Results against cell size (.png/.pdf/.svg/.jpg)."),
@@ -657,6 +666,7 @@ def converge_wheel_cmd(
             bed=Bed(packing=packing),
             resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric),
             drive=Drive(duration=duration),
+            grid_phases=grid_phases,
         )
     _emit_convergence(res, fmt, out_path, plot_path, "MPM wheel")
 

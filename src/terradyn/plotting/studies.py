@@ -151,7 +151,18 @@ def plot_convergence(result: Any) -> Any:
     h_mm = np.asarray(result.cell_sizes) * 1e3
     for ax, name in zip(axes[0], names, strict=True):
         est = result.estimates[name]
-        ax.plot(h_mm, result.values[name], "o-", color="C0", label="MPM")
+        phases = getattr(result, "phase_values", {}).get(name)
+        ax.plot(
+            h_mm,
+            result.values[name],
+            "o-",
+            color="C0",
+            label="MPM" if not phases else "MPM, mean of the grid phases",
+        )
+        if phases:
+            for k in range(len(phases[0])):
+                ax.plot(h_mm, [p[k] for p in phases], "x", color="0.45", ms=5,
+                        label="each grid phase" if k == 0 else None)  # fmt: skip
         finest = h_mm.min()
         band = (
             "error band of the finest (GCI)" if est.extrapolated is not None else "spread of the three finest"
