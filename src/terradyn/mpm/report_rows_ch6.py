@@ -214,7 +214,7 @@ def flapped_self_propelled(quick: bool) -> ItemOutput:
         ax.grid(True, alpha=0.35)
         ax.legend(fontsize=7)
     fig.suptitle(f"Flapped wheels (hub radius {_FLAP_HUB * 1e3:g} mm), {_FLAP_LOAD:g} N on {mat.name}, "
-                 f"self-propelled at {_FLAP_OMEGA:g} rad/s: MPM ({s.cell_size * 1e3:g} mm cells) and "
+                 f"self-propelled at {_FLAP_OMEGA:g} rad/s: MPM ({s.cell_size * 1e3:.3g} mm cells) and "
                  "quasi-static RFT")  # fmt: skip
     out = ItemOutput(
         figures={"flapped_mpm": fig},
