@@ -82,11 +82,8 @@ def drag_bed_spec(body: Any, *, depth: float, distance: float, grain_diameter: f
     )
 
 
-def _drag_row(lmp: Any, params: dict[str, Any], history: dict[str, list[float]], step: int) -> None:
-    _record_row(lmp, params, history, step)
-
-
-DRAG_HOOKS = RunHooks(_drag_row, lambda lmp, params, t: _pose(params, t), "x_m")
+#: the intrusion's history rows (force means over each interval), the progress read from x
+DRAG_HOOKS = RunHooks(_record_row, lambda lmp, params, t: _pose(params, t), "x_m")
 
 
 def _pose(params: dict[str, Any], time_s: float) -> tuple[float, float, float]:
