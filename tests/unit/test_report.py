@@ -35,7 +35,7 @@ def test_quick_report_names_every_item_and_embeds_figures(quick_report):
     # models without a row are listed as pending, never silently dropped (every model of every item
     # has a row once the dem extra loads; test_a_plugged_row... checks the pending listing itself)
     pending = [(it.key, m) for it in ITEMS for m, spec in rows_of(it) if spec is None]
-    assert ("pending" in html) == bool(pending) and "MPM" in html
+    assert ("<p class='pending'>" in html) == bool(pending) and "MPM" in html
     # the MPM rows that ship run in the quick report (terradyn.mpm.report_rows)
     for key in ("ch9-plate-packing", "ch9-wedges", "fig-9-1", "fig-6-8", "fig-4-1", "ch4-plate-depth",
                 "ch8-high-speed", "ch6-wheels-bc", "ch6-flapped"):  # fmt: skip
@@ -169,7 +169,7 @@ def test_a_plugged_row_runs_and_dem_rows_need_terradyn_dem(tmp_path, monkeypatch
     monkeypatch.delitem(registry._ROWS, ("ch9-superposition", "mpm"))
     reproduce(tmp_path / "pending", quick=True, only=["ch9-superposition"])
     html = (tmp_path / "pending" / "report.html").read_text(encoding="utf-8")
-    assert "pending" in html and "MPM" in html
+    assert "<p class='pending'><b>MPM</b>: pending</p>" in html
     plate = registry.item("ch4-plate-depth")
     monkeypatch.setattr(registry, "dem_available", lambda: False)
     assert "dem" not in [m for m, _ in registry.rows_of(plate)]
