@@ -331,18 +331,27 @@ def plowing(quick: bool) -> ItemOutput:
             "info" if quick else ("agrees" if separated else "disagrees"),
         )
     )  # fmt: skip
-    change = rel["dense"] > 1.5 * rel["loose"] and peak["dense"] > peak["loose"]
+    # across beds, not on means: every dense bed must fluctuate more, and more periodically, than
+    # every loose one
+    larger = min(r["drag_relative_std"] for r in by["dense"]) > max(
+        r["drag_relative_std"] for r in by["loose"]
+    )
+    periodic = min(r["autocorrelation_peak_height"] for r in by["dense"]) > max(
+        r["autocorrelation_peak_height"] for r in by["loose"]
+    )
     out.findings.append(
         Finding(
             f"fluctuations: std / mean of the detrended drag {rel['loose']:.3f} (loose) and "
-            f"{rel['dense']:.3f} (dense); autocorrelation peak {peak['loose']:.2f} / {peak['dense']:.2f}. "
-            "Gravish et al. 2010 see smooth drag below a packing fraction of about 0.605 and periodic "
-            "fluctuations above it; "
-            + ("the dense DEM bed fluctuates more and more periodically" if change else
-               "the DEM beds do not show that change of character here"),
-            "info" if quick else ("agrees" if change else "disagrees"),
+            f"{rel['dense']:.3f} (dense); autocorrelation peak {peak['loose']:.2f} / {peak['dense']:.2f} "
+            "(means over the beds). Gravish et al. 2010 see smooth drag below a packing fraction of about "
+            "0.605 and periodic fluctuations above it; every dense bed "
+            + ("fluctuates more" if larger else "does NOT fluctuate more")
+            + " and "
+            + ("more periodically" if periodic else "NOT more periodically")
+            + " than every loose one",
+            "info" if quick else ("agrees" if larger and periodic else "disagrees"),
         )
-    )  # fmt: skip
+    )
     if quick:
         out.findings.append(Finding(_QUICK_NOTE, "info"))
     return out
