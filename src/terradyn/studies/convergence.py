@@ -341,6 +341,21 @@ def _phase_bed(run_options: dict[str, Any], grid_phases: int, ppc: int) -> Any:
     return bed
 
 
+def _case_run(
+    run_case: Callable[..., Any], body: Any, material: Any, run_options: dict[str, Any], grid_phases: int
+) -> Callable[..., Mapping[str, float]]:
+    """``run(cell_size, surface_offset=0)`` -> the summary of ``run_case(body, material, ...)`` with the
+    case's resolution at that cell size and, with grid phases, its bed at that surface offset."""
+    base = _resolution(run_options)
+    bed = _phase_bed(run_options, grid_phases, base.particles_per_cell)
+
+    def run(h: float, offset: float = 0.0) -> Mapping[str, float]:
+        beds = {} if bed is None else {"bed": bed.replace(surface_offset=offset)}
+        return run_case(body, material, resolution=base.replace(cell_size=h), **beds, **run_options).summary
+
+    return run
+
+
 def converge_intrusion(
     body: Any,
     material: Any,
@@ -356,16 +371,7 @@ def converge_intrusion(
     :func:`converge` (it must divide the resolution's points per cell)."""
     from ..mpm import run_intrusion
 
-    base = _resolution(run_options)
-    bed = _phase_bed(run_options, grid_phases, base.particles_per_cell)
-
-    def run(h: float, offset: float = 0.0) -> Mapping[str, float]:
-        res = base.replace(cell_size=h)
-        if bed is None:
-            return run_intrusion(body, material, resolution=res, **run_options).summary
-        return run_intrusion(
-            body, material, resolution=res, bed=bed.replace(surface_offset=offset), **run_options
-        ).summary
+    run = _case_run(run_intrusion, body, material, run_options, grid_phases)
 
     return converge(run, cell_sizes, quantities, progress=progress, metadata={"case": "intrusion"},
                     grid_phases=grid_phases)  # fmt: skip
@@ -386,16 +392,7 @@ def converge_wheel(
     ``grid_phases`` as in :func:`converge`."""
     from ..mpm import run_wheel
 
-    base = _resolution(run_options)
-    bed = _phase_bed(run_options, grid_phases, base.particles_per_cell)
-
-    def run(h: float, offset: float = 0.0) -> Mapping[str, float]:
-        res = base.replace(cell_size=h)
-        if bed is None:
-            return run_wheel(wheel, material, resolution=res, **run_options).summary
-        return run_wheel(
-            wheel, material, resolution=res, bed=bed.replace(surface_offset=offset), **run_options
-        ).summary
+    run = _case_run(run_wheel, wheel, material, run_options, grid_phases)
 
     return converge(run, cell_sizes, quantities, progress=progress, metadata={"case": "wheel"},
                     grid_phases=grid_phases)  # fmt: skip
