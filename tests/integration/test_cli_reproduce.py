@@ -1,5 +1,7 @@
 """``terradyn reproduce``: bad input is one line (exit 1); a quick chapter builds; an interrupt exits 130."""
 
+import re
+
 import pytest
 
 
@@ -31,8 +33,15 @@ def test_quick_chapter_and_resume(run_cli, tmp_path):
     html = (out / "report.html").read_text(encoding="utf-8")
     assert "ch3-pressure-sinkage" in html and "Chapter 9" not in html
     assert "0 reused" in stdout
-    code, stdout, _ = run_cli(*args)
+    # stderr is not a terminal here: one line per finished row, the last with nothing left
+    lines = [ln for ln in err.splitlines() if ln.startswith("reproduce (")]
+    assert lines, err
+    last = r"reproduce \((\d+) rows\): \1/\1 done, elapsed \d+:\d\d:\d\d, ETA 0:00:00"
+    assert re.fullmatch(last, lines[-1])
+    assert len(lines) == int(lines[-1].split("(")[1].split()[0])
+    code, stdout, err = run_cli(*args)
     assert code == 0 and "0 rows run" in stdout
+    assert "done, elapsed" not in err  # nothing ran
 
 
 def test_interrupt_exits_130_and_says_how_to_resume(run_cli, tmp_path, monkeypatch):

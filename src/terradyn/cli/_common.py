@@ -86,15 +86,37 @@ def _quiet() -> bool:
     return not sys.stderr.isatty() or bool(os.environ.get("CI"))
 
 
+def _clock(seconds: float) -> str:
+    s = round(seconds)
+    return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}"
+
+
 @contextmanager
-def progress(total: int, description: str) -> Iterator[Callable[[int], None]]:
-    """A progress bar with ETA on a terminal, silent in pipes and CI. Yields ``advance(n)``."""
+def progress(total: int, description: str, *, log: bool = False) -> Iterator[Callable[[int], None]]:
+    """A progress bar with ETA on a terminal, silent in pipes and CI. Yields ``advance(n)``.
+
+    With ``log`` (for work of hours, often run with stderr sent to a file) a pipe or CI gets one
+    line per advance instead of silence: ``description: k/total done, elapsed H:MM:SS, ETA H:MM:SS``
+    (the ETA at the mean pace so far)."""
     if _quiet():
+        import time
 
-        def _silent(n: int = 1) -> None:
-            return None
+        start = time.perf_counter()
+        done = 0
 
-        yield _silent
+        def _line(n: int = 1) -> None:
+            nonlocal done
+            done += n
+            if not log or total <= 0:
+                return
+            spent = time.perf_counter() - start
+            left = spent / done * (total - done) if done else 0.0
+            sys.stderr.write(
+                f"{description}: {done}/{total} done, elapsed {_clock(spent)}, ETA {_clock(left)}\n"
+            )
+            sys.stderr.flush()
+
+        yield _line
         return
     from rich.progress import (
         BarColumn,

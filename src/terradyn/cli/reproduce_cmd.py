@@ -53,7 +53,7 @@ def reproduce(
     if scheduler == "auto":
         scheduler = "serial" if quick else "processes"
     total = len(rows_to_run(folder, chapters=chapters, quick=quick, only=only))
-    with progress(total, f"reproduce ({total} rows)") as advance:
+    with progress(total, f"reproduce ({total} rows)", log=True) as advance:
         try:
             run = run_report(
                 folder,
