@@ -113,3 +113,20 @@ def test_grid_phases_move_the_grid_and_report_the_mean_and_spread():
     assert "grid_phases" not in one.record() and len(one.phases) == 1
     with pytest.raises(InputError, match="grid_phases"):
         strip_footing(30.0, "rough", grid_phases=3, run=run)  # 2 points per cell: phases 1 or 2
+
+
+def test_the_footing_plot_draws_every_grid_phase_and_the_bounds():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from terradyn.plotting.studies import plot_footing
+
+    run, _ = _fake(11.0, 15.0, per_offset=4.0)
+    two = plot_footing(strip_footing(30.0, "smooth", grid_phases=2, run=run))
+    labels = [ln.get_label() for ln in two.axes[0].get_lines()]
+    assert sum("grid offset" in lab for lab in labels) == 2  # one curve per phase, each named
+    assert any("offset 0.5 cell" in lab and "13" in lab for lab in labels)
+    assert any("upper bound" in lab for lab in labels) and any("isochoric" in lab for lab in labels)
+    one = plot_footing(strip_footing(30.0, "smooth", run=_fake(11.0, 15.0)[0]))
+    labels = [ln.get_label() for ln in one.axes[0].get_lines()]
+    assert not any("grid offset" in lab for lab in labels) and any(lab.startswith("MPM") for lab in labels)

@@ -194,17 +194,29 @@ def plot_footing(result: Any) -> Any:
     its intercept (the collapse pressure of the MPM) and the theory value 0.5 gamma B N_gamma."""
     fig, axes = new_figure(1, 1, figsize=(6.4, 4.2))
     ax = axes[0, 0]
-    s, q = result.curve
     b, gamma = result.width_m, result.unit_weight_N_m3
-    ax.plot(s / b, q / 1e3, color="C0", lw=1.2, label=f"MPM, cell {result.cell_size_m * 1e3:.3g} mm")
+    cell = f"cell {result.cell_size_m * 1e3:.3g} mm"
+    phases = getattr(result, "phases", ())
+    if len(phases) > 1:  # every grid phase's curve, each with its own intercept
+        for k, (offset, n_gamma, (s, q)) in enumerate(phases):
+            label = rf"MPM, {cell}, grid offset {offset:g} cell: $N_\gamma$ = {n_gamma:.3g}"
+            ax.plot(s / b, q / 1e3, color=f"C{(0, 4, 5, 6)[k % 4]}", lw=1.1, label=label)
+        fit_label = rf"mean fit of the {len(phases)} phases, intercept: $N_\gamma$ = {result.N_gamma_mpm:.3g}"
+    else:
+        s, q = result.curve
+        ax.plot(s / b, q / 1e3, color="C0", lw=1.2, label=f"MPM, {cell}")
+        fit_label = rf"fit, intercept: $N_\gamma$ = {result.N_gamma_mpm:.3g}"
     q_u = 0.5 * gamma * b * result.N_gamma_mpm
     x = np.array([0.0, 1.5 * result.settlement_m / b])
-    ax.plot(x, (q_u + gamma * result.embedment_slope * x * b) / 1e3, "--", color="C1",
-            label=rf"fit, intercept: $N_\gamma$ = {result.N_gamma_mpm:.3g}")  # fmt: skip
+    ax.plot(x, (q_u + gamma * result.embedment_slope * x * b) / 1e3, "--", color="C1", label=fit_label)
     ref = result.reference.get("N_gamma_reference")
     if ref:
         ax.axhline(0.5 * gamma * b * float(ref) / 1e3, color="C2", ls=":",
                    label=rf"theory (isochoric): $N_\gamma$ = {float(ref):.3g}")  # fmt: skip
+    upper = result.reference.get("N_gamma_upper_bound")
+    if upper:
+        ax.axhline(0.5 * gamma * b * float(upper) / 1e3, color="C3", ls="-.", lw=1.0,
+                   label=rf"associated flow (upper bound): $N_\gamma$ = {float(upper):.3g}")  # fmt: skip
     ax.set_xlabel("settlement / footing width [-]")
     ax.set_ylabel("bearing pressure [kPa]")
     ax.set_xlim(left=0.0)
