@@ -126,7 +126,9 @@ def test_the_footing_plot_draws_every_grid_phase_and_the_bounds():
     labels = [ln.get_label() for ln in two.axes[0].get_lines()]
     assert sum("grid offset" in lab for lab in labels) == 2  # one curve per phase, each named
     assert any("offset 0.5 cell" in lab and "13" in lab for lab in labels)
-    assert any("upper bound" in lab for lab in labels) and any("isochoric" in lab for lab in labels)
+    assert any("associated Mohr-Coulomb" in lab for lab in labels)
+    assert any("isochoric" in lab for lab in labels)
+    assert any("MPM cone" in lab for lab in labels)  # a smooth base has the cone's bound
     one = plot_footing(strip_footing(30.0, "smooth", run=_fake(11.0, 15.0)[0]))
     labels = [ln.get_label() for ln in one.axes[0].get_lines()]
     assert not any("grid offset" in lab for lab in labels) and any(lab.startswith("MPM") for lab in labels)

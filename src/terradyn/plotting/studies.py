@@ -213,10 +213,14 @@ def plot_footing(result: Any) -> Any:
     if ref:
         ax.axhline(0.5 * gamma * b * float(ref) / 1e3, color="C2", ls=":",
                    label=rf"theory (isochoric): $N_\gamma$ = {float(ref):.3g}")  # fmt: skip
-    upper = result.reference.get("N_gamma_upper_bound")
-    if upper:
-        ax.axhline(0.5 * gamma * b * float(upper) / 1e3, color="C3", ls="-.", lw=1.0,
-                   label=rf"associated flow (upper bound): $N_\gamma$ = {float(upper):.3g}")  # fmt: skip
+    for key, style, what in (
+        ("N_gamma_upper_bound", "-.", "associated Mohr-Coulomb"),
+        ("N_gamma_upper_bound_cone", (0, (5, 2, 1, 2, 1, 2)), "associated MPM cone (bound of the MPM)"),
+    ):
+        value = result.reference.get(key)
+        if value:
+            ax.axhline(0.5 * gamma * b * float(value) / 1e3, color="C3", ls=style, lw=1.0,
+                       label=rf"{what}: $N_\gamma$ = {float(value):.3g}")  # fmt: skip
     ax.set_xlabel("settlement / footing width [-]")
     ax.set_ylabel("bearing pressure [kPa]")
     ax.set_xlim(left=0.0)
