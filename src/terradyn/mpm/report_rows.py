@@ -407,9 +407,10 @@ def footing(quick: bool) -> ItemOutput:
     out.findings.append(
         Finding(
             "measured separately at full resolution (B = 40 mm, two grid phases): phi = 34 deg smooth "
-            "14.1 / 15.2 at B/10 / B/14 cells (point update) and 15.4 at B/14 (patch), inside [6.73, "
-            "21.71] (21.71 the upper bound of the MPM's own cone) but at the associated value 14.81, "
-            "twice the isochoric estimate; its curves step at node-line crossings too",
+            "14.1 / 15.2 at B/10 / B/14 cells (point update), 15.4 / 14.7 at B/14 / B/20 (patch), inside "
+            "[6.73, 21.71] (21.71 the upper bound of the MPM's own cone) but at the associated value "
+            "14.81, twice the isochoric estimate; before its base first crosses a node line it holds "
+            "8.7 / 5.5 at B/20 (two grid phases), about the estimate 6.73, and the step doubles it",
             "info",
         )
     )
