@@ -254,6 +254,7 @@ SIZES = ("--cell-sizes", "0.01,0.008,0.006")
         (("converge", "wheel", *WHEEL_ARGS, *SIZES, "--particles-per-cell", "9"), "--particles-per-cell"),
         (("converge", "wheel", *WHEEL_ARGS, *SIZES, "--packing", "loose"), "--packing"),
         (("verify", "strip-footing", "--phi", "30", "--cell-size", "-0.001"), "--cell-size"),
+        (("verify", "strip-footing", "--phi", "30", "--contact", "glue"), "--contact"),
     ],
 )
 def test_cli_names_the_flag_of_a_bad_spec_field(run_cli, args, flag):

@@ -52,7 +52,9 @@ class MPMOptions:
     packing = typer.Option("consolidated", "--packing", help="consolidated or unconsolidated bed.")
     walls = typer.Option(None, "--walls", help="Wall condition: free-slip, no-slip or frictional.")
     contact = typer.Option(
-        "two-field", "--contact", help="Body-grain grid contact: two-field (default) or the legacy cover."
+        "two-field",
+        "--contact",
+        help="Body-grain grid contact: two-field (default) or the legacy cover.",
     )
     checkpoint = typer.Option(
         None, "--checkpoint", help="Checkpoint file (.npz), written atomically, on Ctrl-C and at the end."
@@ -691,6 +693,7 @@ def verify_strip_footing(
     ),
     particles_per_cell: int = MPMOptions.ppc,
     volumetric: str = MPMOptions.volumetric,
+    contact: str = MPMOptions.contact,
     grid_phases: int = typer.Option(
         1,
         "--grid-phases",
@@ -722,7 +725,9 @@ def verify_strip_footing(
         res = strip_footing(
             phi, base, material=material, width=width, cell_size=cell_size,
             settlement_ratio=settlement_ratio, progress=bar, grid_phases=grid_phases,
-            resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric),
+            resolution=Resolution(
+                particles_per_cell=particles_per_cell, volumetric=volumetric, contact=contact
+            ),
         )  # fmt: skip
     if plot_path is not None:
         from ..plotting.studies import plot_footing
