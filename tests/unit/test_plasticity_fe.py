@@ -102,7 +102,7 @@ def test_the_associated_fe_footing_extrapolates_to_the_characteristics_value():
     conv = fe.fe_n_gamma_convergence(MU, flow="associated", elements=(5, 10, 20))
     exact = moc_n_gamma(cone_plane_strain_friction_angle(math.radians(34.0))).n_gamma
     assert conv.estimate.extrapolated == pytest.approx(exact, rel=0.03)
-    assert 0.3 < conv.estimate.observed_order < 2.0
+    assert 0.3 < conv.estimate.order < 2.0
 
 
 @pytest.mark.parametrize(
@@ -127,3 +127,36 @@ def test_the_convergence_needs_three_meshes():
     with pytest.raises(InputError) as err:
         fe.fe_n_gamma_convergence(MU, elements=(5, 10))
     assert err.value.field == "elements"
+
+
+def test_the_fe_footing_command_prints_every_mesh_and_the_estimate(run_cli, tmp_path):
+    plot = tmp_path / "fe.png"
+    code, out, err = run_cli("mpm", "verify", "fe-footing", "--phi", "34", "--elements", "3,4,5",
+                             "--plot", str(plot), "--format", "json")  # fmt: skip
+    assert code == 0, err
+    import json
+
+    rec = json.loads(out)
+    assert rec["flow"] == "isochoric" and rec["base"] == "smooth"
+    assert [r["elements_per_half_width"] for r in rec["runs"]] == [3, 4, 5]
+    assert rec["N_gamma_finest"] == rec["runs"][-1]["N_gamma"]
+    assert {"observed_order", "N_gamma_extrapolated", "error_band_of_finest", "note"} <= set(rec)
+    assert plot.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(
+    ("args", "flag"),
+    [
+        (("--phi", "34", "--flow", "dilatant"), "--flow"),
+        (("--phi", "34", "--base", "sticky"), "--base"),
+        (("--phi", "34", "--elements", "5,10"), "--elements"),
+        (("--phi", "34", "--elements", "5,x,10"), "--elements"),
+        (("--phi", "60"), "--phi"),
+        (("--phi", "34", "--damping", "1"), "--damping"),
+    ],
+)
+def test_the_fe_footing_command_names_a_bad_flag(run_cli, args, flag):
+    code, out, err = run_cli("mpm", "verify", "fe-footing", *args)
+    assert code == 1 and out == ""
+    assert err.startswith(f"terradyn: error: {flag} = "), err
+    assert len(err.strip().splitlines()) == 1

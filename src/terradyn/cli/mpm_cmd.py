@@ -16,6 +16,8 @@ from ..errors import InputError, check_finite
 from ..mpm.specs import Bed, Drive, Outputs, Resolution
 from ._bodies import BODY_SIZE_FLAGS, BodyKind, BodyOptions, build_body
 from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure
+from .mpm_options import MPMOptions
+from .mpm_verify_cmd import verify_app
 from .options import (
     ANGLE,
     ANIMATE,
@@ -36,64 +38,7 @@ app = typer.Typer(
     no_args_is_help=True,
     rich_markup_mode=None,
 )
-
-
-class MPMOptions:
-    cell_size = typer.Option(
-        None, "--cell-size", help="Grid cell size [m] (default: diameter / 20, wheels / 32)."
-    )
-    ppc = typer.Option(2, "--particles-per-cell", help="Particles per cell along each axis.")
-    volumetric = typer.Option(
-        "point",
-        "--volumetric",
-        help="Velocity divergence of the volume and stress update: point (each point its own, the classical "
-        "update) or patch (averaged over the points of a cell, against volumetric locking; docs/mpm.md).",
-    )
-    packing = typer.Option("consolidated", "--packing", help="consolidated or unconsolidated bed.")
-    walls = typer.Option(None, "--walls", help="Wall condition: free-slip, no-slip or frictional.")
-    contact = typer.Option(
-        "two-field",
-        "--contact",
-        help="Body-grain grid contact: two-field (default) or the legacy cover.",
-    )
-    checkpoint = typer.Option(
-        None, "--checkpoint", help="Checkpoint file (.npz), written atomically, on Ctrl-C and at the end."
-    )
-    checkpoint_interval = typer.Option(
-        60.0, "--checkpoint-interval", help="Wall-clock seconds [s] between checkpoints."
-    )
-    resume = typer.Option(False, "--resume", help="Continue the run saved in --checkpoint (it must exist).")
-    snapshots = typer.Option(
-        None, "--snapshots", help="Folder for particle snapshots (NetCDF, fields extra)."
-    )
-    series = typer.Option(None, "--series", help="Time series file (.csv).")
-    fields = typer.Option(
-        None, "--fields", help="Particle speed and pressure at the end of the run (.png/.pdf/.svg/.jpg)."
-    )
-    frames = typer.Option(40, "--frames", help="Frames in the --animate animation (2-500).")
-    record_interval = typer.Option(
-        None,
-        "--record-interval",
-        help="Simulated time [s] per time-series row (default: a quarter cell of travel).",
-    )
-    snapshot_interval = typer.Option(
-        None,
-        "--snapshot-interval",
-        help="Simulated time [s] between --snapshots files (default: 4 cells of travel).",
-    )
-    plot = typer.Option(None, "--plot", help="Force history plot (.png/.pdf/.svg/.jpg).")
-    dilatancy = typer.Option(
-        0.0,
-        "--dilatancy",
-        help="Dilatancy coefficient K [-] of tan(psi) = K (phi - phi_c): dense beds dilate, loose ones "
-        "compact and stay as loose as prepared; 0 = off (isochoric flow).",
-    )
-    surface_friction = typer.Option(
-        None,
-        "--surface-friction",
-        help="Body-grain Coulomb friction [-] (0-2; default: the medium's, 0.4 in the shipped ones). "
-        "It limits a wheel's thrust: calibrate it with the bed before comparing pulls (docs/mpm.md).",
-    )
+app.add_typer(verify_app, name="verify")
 
 
 def _dilatancy(value: float) -> float | None:
@@ -672,92 +617,3 @@ def converge_wheel_cmd(
         )
     _emit_convergence(res, fmt, out_path, plot_path, "MPM wheel")
 
-
-verify_app = typer.Typer(
-    help="MPM against plasticity theory (no RFT): bearing capacity of a rigid strip footing.",
-    no_args_is_help=True,
-    rich_markup_mode=None,
-)
-app.add_typer(verify_app, name="verify")
-
-
-@verify_app.command("strip-footing")
-def verify_strip_footing(
-    phi: float = typer.Option(..., "--phi", help="Friction angle phi [deg] (continuum mu_s = sin phi)."),
-    base: str = typer.Option("rough", "--base", help="Footing base: rough (no slip) or smooth."),
-    width: float = typer.Option(0.04, "--footing-width", help="Footing width B [m]."),
-    material: str = MATERIAL,
-    cell_size: float | None = typer.Option(None, "--cell-size", help="Grid cell size [m] (default B/20)."),
-    settlement_ratio: float = typer.Option(
-        0.1, "--settlement-ratio", help="Settlement s/B [-] about which the collapse pressure is read."
-    ),
-    particles_per_cell: int = MPMOptions.ppc,
-    volumetric: str = MPMOptions.volumetric,
-    contact: str = MPMOptions.contact,
-    grid_phases: int = typer.Option(
-        1,
-        "--grid-phases",
-        help="Repeat the run with the grid moved by k/N of a cell against the surface (N divides "
-        "--particles-per-cell) and report the mean with each phase's value and the spread.",
-    ),
-    fmt: OutputFormat = FORMAT,
-    out: str | None = OUT,
-    plot: str | None = typer.Option(
-        None, "--plot", help="Bearing pressure against settlement (.png/.pdf/.svg/.jpg)."
-    ),
-    fields: str | None = typer.Option(
-        None, "--fields", help="Plastic shear-rate field at the end of the run (.png/.pdf/.svg/.jpg)."
-    ),
-    slip_lines: bool = typer.Option(
-        False, "--slip-lines", help="Overlay the Prandtl slip-line field of the same footing on --fields."
-    ),
-) -> None:
-    """N_gamma of a rigid strip footing from MPM beside the plasticity-theory value for isochoric flow."""
-    from ..studies.mpm_verification import strip_footing
-
-    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
-    fields_path = plot_file("--fields", fields)
-    if slip_lines and fields_path is None:
-        raise InputError("--slip-lines", True, "together with --fields FILE")
-    if base not in ("rough", "smooth"):
-        raise InputError("--base", base, "rough or smooth")
-    with fraction_progress("MPM strip footing", "s") as bar:
-        res = strip_footing(
-            phi, base, material=material, width=width, cell_size=cell_size,
-            settlement_ratio=settlement_ratio, progress=bar, grid_phases=grid_phases,
-            resolution=Resolution(
-                particles_per_cell=particles_per_cell, volumetric=volumetric, contact=contact
-            ),
-        )  # fmt: skip
-    if plot_path is not None:
-        from ..plotting.studies import plot_footing
-
-        save_figure(plot_footing(res), plot_path)
-    if fields_path is not None:
-        save_figure(_footing_fields(res, slip_lines), fields_path, "--fields")
-    emit(res.record(), fmt, out_path, title=f"strip footing, phi = {phi:g} deg, {base} base")
-
-
-def _footing_fields(res: Any, slip_lines: bool) -> Any:
-    from ..plotting.mpm import plot_fields
-
-    b = res.width_m
-    window = (-3.0 * b, 3.0 * b, -1.5 * b, 0.5 * b)
-    fig = plot_fields(
-        res.final_particles,
-        segments=res.final_segments,
-        quantities=("plastic_shear_rate",),
-        window=window,
-        title=f"MPM strip footing, phi = {res.friction_angle_deg:g} deg, {res.base.value} base, "
-        f"s/B = {res.settlement_m / b:.2g}",
-    )
-    if slip_lines:
-        from ..plasticity.slipline import prandtl_field
-        from ..plotting.slipline import plot_slip_lines
-
-        field = prandtl_field(b, math.radians(res.friction_angle_deg), base=res.base.value)
-        ax = fig.axes[0]
-        plot_slip_lines(field, ax=ax)
-        ax.set_xlim(window[0], window[1])
-        ax.set_ylim(window[2], window[3])
-    return fig

@@ -394,10 +394,10 @@ class FEConvergence:
                 for n, r, w in zip(self.elements_per_half_width, self.runs, self.wall_s, strict=True)
             ],
             "N_gamma_finest": est.finest,
-            "observed_order": est.observed_order,
+            "observed_order": est.order,
             "N_gamma_extrapolated": est.extrapolated,
-            "error_band": est.error_band,
-            "asymptotic": est.asymptotic,
+            "error_band_of_finest": est.error_band,
+            "monotone": est.monotone,
             "note": est.note,
         }
 

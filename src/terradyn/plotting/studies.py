@@ -231,3 +231,41 @@ def plot_footing(result: Any) -> Any:
         rf"rigid strip footing, $\phi$ = {result.friction_angle_deg:g} deg, {result.base.value} base"
     )
     return fig
+
+
+def plot_fe_footing(result: Any, phi_deg: float, reference: dict[str, Any] | None = None) -> Any:
+    """Bearing factor 2 q / (gamma B) against settlement / width of the FE strip footing at every mesh
+    (:class:`~terradyn.plasticity.fe_footing.FEConvergence`), with each mesh's reading (the mean of
+    the last quarter), the Richardson estimate and, from ``reference``
+    (:func:`~terradyn.plasticity.references.strip_footing_reference`), the Davis estimate and the
+    associated values."""
+    fig, axes = new_figure(1, 1, figsize=(6.4, 4.2))
+    ax = axes[0, 0]
+    for k, (n, run) in enumerate(zip(result.elements_per_half_width, result.runs, strict=True)):
+        s, q = run.curve[:, 0], run.curve[:, 1]
+        scale = 2.0 / (run.unit_weight_N_m3 * run.width_m)
+        ax.plot(s / run.width_m, q * scale, color=f"C{k}", lw=1.0,
+                label=rf"{n} elements per half-width: $N_\gamma$ = {run.N_gamma:.3g}")  # fmt: skip
+    est = result.estimate
+    if est.extrapolated is not None:
+        label = rf"Richardson (order {est.order:.2g}): $N_\gamma$ = {est.extrapolated:.3g}"
+        ax.axhline(est.extrapolated, color="k", ls="--", lw=1.0, label=label)
+    for key, style, what in (
+        ("N_gamma_davis_estimate", ":", "Davis estimate (isochoric)"),
+        ("N_gamma_associated", "-.", "associated Mohr-Coulomb"),
+        ("N_gamma_upper_bound_cone", (0, (5, 2, 1, 2, 1, 2)), "associated cone"),
+    ):
+        value = (reference or {}).get(key)
+        if value:
+            ax.axhline(
+                float(value), color="C3", ls=style, lw=1.0, label=rf"{what}: $N_\gamma$ = {float(value):.3g}"
+            )
+    first = result.runs[0]
+    ax.set_xlabel("settlement / footing width [-]")
+    ax.set_ylabel(r"bearing factor $2q / (\gamma B)$ [-]")
+    ax.set_xlim(left=0.0)
+    ax.set_ylim(bottom=0.0)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(rf"FE strip footing, cone of $\phi$ = {phi_deg:g} deg, {first.base} base, {first.flow} flow")
+    return fig

@@ -1,0 +1,165 @@
+"""``terradyn mpm verify``: the MPM against plasticity theory (strip footing) and the FE reference."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import typer
+
+from ..errors import InputError, check_finite
+from ..mpm.specs import Resolution
+from ._common import OutputFormat, emit, fraction_progress, save_figure
+from .mpm_options import MPMOptions
+from .options import FORMAT, MATERIAL, OUT, out_file, plot_file
+
+verify_app = typer.Typer(
+    help="MPM against plasticity theory (no RFT): bearing capacity of a rigid strip footing.",
+    no_args_is_help=True,
+    rich_markup_mode=None,
+)
+
+
+@verify_app.command("strip-footing")
+def verify_strip_footing(
+    phi: float = typer.Option(..., "--phi", help="Friction angle phi [deg] (continuum mu_s = sin phi)."),
+    base: str = typer.Option("rough", "--base", help="Footing base: rough (no slip) or smooth."),
+    width: float = typer.Option(0.04, "--footing-width", help="Footing width B [m]."),
+    material: str = MATERIAL,
+    cell_size: float | None = typer.Option(None, "--cell-size", help="Grid cell size [m] (default B/20)."),
+    settlement_ratio: float = typer.Option(
+        0.1, "--settlement-ratio", help="Settlement s/B [-] about which the collapse pressure is read."
+    ),
+    particles_per_cell: int = MPMOptions.ppc,
+    volumetric: str = MPMOptions.volumetric,
+    contact: str = MPMOptions.contact,
+    grid_phases: int = typer.Option(
+        1,
+        "--grid-phases",
+        help="Repeat the run with the grid moved by k/N of a cell against the surface (N divides "
+        "--particles-per-cell) and report the mean with each phase's value and the spread.",
+    ),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = typer.Option(
+        None, "--plot", help="Bearing pressure against settlement (.png/.pdf/.svg/.jpg)."
+    ),
+    fields: str | None = typer.Option(
+        None, "--fields", help="Plastic shear-rate field at the end of the run (.png/.pdf/.svg/.jpg)."
+    ),
+    slip_lines: bool = typer.Option(
+        False, "--slip-lines", help="Overlay the Prandtl slip-line field of the same footing on --fields."
+    ),
+) -> None:
+    """N_gamma of a rigid strip footing from MPM beside the plasticity-theory value for isochoric flow."""
+    from ..studies.mpm_verification import strip_footing
+
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    fields_path = plot_file("--fields", fields)
+    if slip_lines and fields_path is None:
+        raise InputError("--slip-lines", True, "together with --fields FILE")
+    if base not in ("rough", "smooth"):
+        raise InputError("--base", base, "rough or smooth")
+    with fraction_progress("MPM strip footing", "s") as bar:
+        res = strip_footing(
+            phi, base, material=material, width=width, cell_size=cell_size,
+            settlement_ratio=settlement_ratio, progress=bar, grid_phases=grid_phases,
+            resolution=Resolution(
+                particles_per_cell=particles_per_cell, volumetric=volumetric, contact=contact
+            ),
+        )  # fmt: skip
+    if plot_path is not None:
+        from ..plotting.studies import plot_footing
+
+        save_figure(plot_footing(res), plot_path)
+    if fields_path is not None:
+        save_figure(_footing_fields(res, slip_lines), fields_path, "--fields")
+    emit(res.record(), fmt, out_path, title=f"strip footing, phi = {phi:g} deg, {base} base")
+
+
+@verify_app.command("fe-footing")
+def verify_fe_footing(
+    phi: float = typer.Option(
+        ..., "--phi", help="Friction angle phi [deg]: the cone sqrt(J2) = sin(phi) p, as in the MPM."
+    ),
+    base: str = typer.Option("smooth", "--base", help="Footing base: rough (no slip) or smooth."),
+    flow: str = typer.Option(
+        "isochoric", "--flow", help="Plastic flow: isochoric (psi = 0, the MPM's) or associated."
+    ),
+    elements: str = typer.Option(
+        "10,20,40", "--elements", help="Three or more meshes, elements per footing half-width (comma list)."
+    ),
+    damping: float = typer.Option(
+        0.8, "--damping", help="Local damping of the explicit relaxation, in [0, 1)."
+    ),
+    crossings: float = typer.Option(
+        200.0, "--crossings", help="Push length in wave crossings of the mesh (more = slower loading)."
+    ),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = typer.Option(
+        None, "--plot", help="Bearing factor against settlement for every mesh (.png/.pdf/.svg/.jpg)."
+    ),
+) -> None:
+    """Reference N_gamma of a strip footing on the MPM's cone from small-strain finite elements (no MPM).
+
+    Runs each mesh and reports N_gamma with the Richardson estimate; the associated flow rule checks
+    the solver against the method of characteristics (docs/plasticity.md)."""
+    from ..plasticity.fe_footing import fe_n_gamma_convergence
+
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    phi_deg = check_finite("--phi", phi)
+    if not 10.0 <= phi_deg <= 45.0:
+        raise InputError("--phi", phi, "an angle in [10, 45] deg")
+    if base not in ("rough", "smooth"):
+        raise InputError("--base", base, "rough or smooth")
+    if flow not in ("isochoric", "associated"):
+        raise InputError("--flow", flow, "isochoric or associated")
+    try:
+        meshes = tuple(int(v) for v in elements.split(","))
+    except ValueError:
+        raise InputError("--elements", elements, "a comma list of integers, e.g. 10,20,40") from None
+    if len(meshes) < 3 or len(set(meshes)) != len(meshes) or min(meshes) < 2 or max(meshes) > 400:
+        raise InputError("--elements", elements, "three or more distinct integers in [2, 400]")
+    if not 0.0 <= damping < 1.0:
+        raise InputError("--damping", damping, "a number in [0, 1)")
+    if not (math.isfinite(crossings) and crossings > 0.0):
+        raise InputError("--crossings", crossings, "a positive number")
+    with fraction_progress("FE strip footing", "of the work") as bar:
+        res = fe_n_gamma_convergence(
+            math.sin(math.radians(phi_deg)), flow=flow, base=base, elements=meshes,
+            progress=lambda done, total: bar(done / total, done / total), damping=damping,
+            crossings=crossings,
+        )  # fmt: skip
+    if plot_path is not None:
+        from ..plasticity.references import strip_footing_reference
+        from ..plotting.studies import plot_fe_footing
+
+        save_figure(plot_fe_footing(res, phi_deg, strip_footing_reference(phi_deg, base)), plot_path)
+    record = {"phi_deg": phi_deg, **res.record()}
+    emit(record, fmt, out_path, title=f"FE strip footing, phi = {phi_deg:g} deg, {base} base, {flow} flow")
+
+
+def _footing_fields(res: Any, slip_lines: bool) -> Any:
+    from ..plotting.mpm import plot_fields
+
+    b = res.width_m
+    window = (-3.0 * b, 3.0 * b, -1.5 * b, 0.5 * b)
+    fig = plot_fields(
+        res.final_particles,
+        segments=res.final_segments,
+        quantities=("plastic_shear_rate",),
+        window=window,
+        title=f"MPM strip footing, phi = {res.friction_angle_deg:g} deg, {res.base.value} base, "
+        f"s/B = {res.settlement_m / b:.2g}",
+    )
+    if slip_lines:
+        from ..plasticity.slipline import prandtl_field
+        from ..plotting.slipline import plot_slip_lines
+
+        field = prandtl_field(b, math.radians(res.friction_angle_deg), base=res.base.value)
+        ax = fig.axes[0]
+        plot_slip_lines(field, ax=ax)
+        ax.set_xlim(window[0], window[1])
+        ax.set_ylim(window[2], window[3])
+    return fig
