@@ -108,22 +108,71 @@ def test_secondary_rough_value_agrees_with_independent_numbers():
 
 
 @pytest.mark.parametrize("phi_deg", [30, 34])
-def test_smooth_reference_falls_back_on_the_davis_estimate_below_the_bound(phi_deg):
+def test_smooth_reference_is_the_fe_value_between_the_bounds(phi_deg):
     out = ref(phi_deg, "smooth")
     json.dumps(out)  # JSON-ready, as the MPM verify command prints it
-    # no published psi = 0 value was retrieved: the reference is the reduced-angle estimate, said so
+    # no published psi = 0 value was retrieved: the reference is terradyn's finite-element value, said so
     assert out["N_gamma_published_non_associated"] is None
-    assert out["reference_kind"] == "estimate"
-    assert out["N_gamma_reference"] == out["N_gamma_davis_estimate"]
-    assert "Davis" in out["reference"]
-    # the associated (exact) value bounds the isochoric one from above
+    assert out["reference_kind"] == "computed, finite elements"
+    assert out["N_gamma_reference"] == out["N_gamma_fe_isochoric"] and out["N_gamma_fe_band"] > 0.0
+    assert "fe_strip_footing" in out["reference"]
+    # the Davis estimate stays beside it, and both lie between the Radenkovic bounds
+    assert "Davis" in out["davis_estimate_reference"]
     assert out["N_gamma_upper_bound"] == out["N_gamma_associated"]
-    assert 0.0 < out["N_gamma_reference"] < out["N_gamma_upper_bound"] < out["N_gamma_upper_bound_cone"]
+    assert out["N_gamma_lower_bound"] == out["N_gamma_davis_estimate"]
+    assert (
+        0.0
+        < out["N_gamma_lower_bound"]
+        < out["N_gamma_reference"] - out["N_gamma_fe_band"]
+        < out["N_gamma_reference"] + out["N_gamma_fe_band"]
+        < out["N_gamma_upper_bound"]
+        < out["N_gamma_upper_bound_cone"]
+    )
     assert out["reduced_friction_angle_deg"] == pytest.approx(
         math.degrees(math.atan(math.sin(math.radians(phi_deg))))
     )
     assert {e["kind"] for e in out["published_non_associated"]} == {"published, not retrieved"}
     assert len(out["published_non_associated"]) == 2
+
+
+def test_without_an_fe_value_the_reference_falls_back_on_the_davis_estimate(monkeypatch):
+    monkeypatch.setattr(
+        refs, "_TABLE", tuple(r for r in refs._TABLE if r["kind"] != "computed, finite elements")
+    )
+    out = ref(34, "smooth")
+    assert out["reference_kind"] == "estimate"
+    assert out["N_gamma_reference"] == out["N_gamma_davis_estimate"]
+    assert out["N_gamma_fe_isochoric"] is None and out["N_gamma_fe_band"] is None
+
+
+def test_the_fe_rows_follow_their_own_rule_from_the_readings_they_quote():
+    """value = mean of the two dampings at 40 elements; band = max(half their difference, the change
+    of that mean from 20 to 40 elements): recomputed from the readings in each row's table text."""
+    import re
+
+    rows = [r for r in refs._TABLE if r["kind"] == "computed, finite elements"]
+    assert rows
+    for row in rows:
+        d8, d5 = (
+            tuple(float(v) for v in m) for m in re.findall(r"D = 0\.[85]: ([\d.]+) / ([\d.]+)", row["table"])
+        )
+        mean40, mean20 = 0.5 * (d8[1] + d5[1]), 0.5 * (d8[0] + d5[0])
+        assert row["value"] == pytest.approx(mean40, abs=0.006)
+        assert row["band"] == pytest.approx(max(0.5 * abs(d8[1] - d5[1]), abs(mean20 - mean40)), abs=0.006)
+
+
+@pytest.mark.slow
+def test_the_tabulated_fe_value_is_reproduced():
+    """Re-runs the four finite-element readings of the 34 deg smooth row (about 12 min on one core)."""
+    from terradyn.plasticity.fe_footing import fe_strip_footing
+
+    row = next(r for r in refs._TABLE if r["kind"] == "computed, finite elements" and r["phi_deg"] == 34.0
+               and r["base"] == "smooth")  # fmt: skip
+    mu = math.sin(math.radians(34.0))
+    got = {(d, n): fe_strip_footing(mu, elements_per_half_width=n, damping=d).N_gamma
+           for d in (0.8, 0.5) for n in (20, 40)}  # fmt: skip
+    for (d, n), value in got.items():
+        assert f"{value:.3f}" in row["table"], (d, n, value)
 
 
 def test_rough_reference_is_an_approximation_bounded_by_the_secondary_exact_value():
@@ -141,7 +190,8 @@ def test_rough_34_has_no_exact_value_and_no_bound():
     out = ref(34, "rough")
     assert out["N_gamma_associated"] is None and out["N_gamma_upper_bound"] is None
     assert out["associated_kind"] == "published, not retrieved"
-    assert out["N_gamma_reference"] == out["N_gamma_davis_estimate"] > 0.0
+    assert out["reference_kind"] == "computed, finite elements"
+    assert out["N_gamma_reference"] > out["N_gamma_davis_estimate"] > 0.0
 
 
 def _with_extra_rows(monkeypatch, *rows):
@@ -176,7 +226,7 @@ def test_compare_gives_ratios_and_flags_a_value_above_the_bound():
     smooth = ref(34, "smooth")
     inside = compare_n_gamma(14.0, smooth)
     assert inside["ratio_to_davis_estimate"] == pytest.approx(14.0 / smooth["N_gamma_davis_estimate"])
-    assert inside["ratio_to_reference"] == inside["ratio_to_davis_estimate"]
+    assert inside["ratio_to_reference"] == pytest.approx(14.0 / smooth["N_gamma_fe_isochoric"])
     assert inside["ratio_to_upper_bound"] == pytest.approx(14.0 / 14.81)
     assert inside["ratio_to_published"] is None
     assert inside["exceeds_upper_bound"] is False
@@ -204,10 +254,11 @@ def test_literature_record_covers_every_not_retrieved_source():
 
 def test_untabulated_angle_is_computed():
     out = ref(32.0, "smooth")
+    assert out["reference_kind"] == "estimate"  # no finite-element row at 32 deg: the Davis estimate
     assert (
-        ref(30, "smooth")["N_gamma_reference"]
+        ref(30, "smooth")["N_gamma_davis_estimate"]
         < out["N_gamma_reference"]
-        < ref(34, "smooth")["N_gamma_reference"]
+        < ref(34, "smooth")["N_gamma_davis_estimate"]
     )
     assert out["N_gamma_reference"] < out["N_gamma_upper_bound"] < out["N_gamma_upper_bound_cone"]
 

@@ -7,6 +7,10 @@ of number it is (``kind``) and the caveats (``notes``):
 
 * ``computed`` - terradyn's own method-of-characteristics solution (:func:`~.moc.moc_n_gamma`), exact
   for associated flow to the quoted mesh convergence;
+* ``computed, finite elements`` - terradyn's small-strain finite-element footing on the MPM's own cone
+  with isochoric flow (:func:`~.fe_footing.fe_strip_footing`): a computed non-associated value, with a
+  ``band`` [-] from its mesh and solution-procedure sensitivity (a non-associated limit load depends on
+  the loading path; docs/plasticity.md);
 * ``estimate`` - the Davis (1968) / Drescher & Detournay (1993) reduced-angle estimate for isochoric
   flow, ``tan phi* = sin phi``, evaluated with terradyn's characteristics solver;
 * ``approximation`` - a design formula (Brinch Hansen 1970) used where no exact solution is available
@@ -53,6 +57,7 @@ __all__ = [
 #: every ``kind`` a table row may have, best-sourced published kind first
 KINDS = (
     "computed",
+    "computed, finite elements",
     "estimate",
     "approximation",
     "published",
@@ -173,6 +178,32 @@ _TABLE: tuple[dict[str, Any], ...] = (
      "notes": "as for 30 deg."},
 )
 # fmt: on
+
+_FE = (
+    "terradyn.plasticity.fe_strip_footing: small-strain B-bar Q4 finite elements of the cone sqrt(J2) = "
+    "sin(phi) p with isochoric flow (the MPM's material), explicit relaxation; checked against the method "
+    "of characteristics with associated flow (docs/plasticity.md)"
+)
+_FE_NOTES = (
+    "value: the mean of the readings at 40 elements per half-width with local damping 0.8 and 0.5 (200 "
+    "wave crossings of loading); band: the larger of half their difference and the change of their mean "
+    "from 20 to 40 elements. The non-associated collapse load depends on the loading path (slower "
+    "loading moves both damping values together), so this is a computed value with its spread, not an "
+    "exact solution."
+)
+
+# (phi [deg], base): (N_gamma, band, readings d = 0.8 / 0.5 at 20 and 40 elements per half-width)
+_FE_ISOCHORIC: dict[tuple[float, str], tuple[float, float, str]] = {
+    (30.0, "smooth"): (7.14, 0.49, "D = 0.8: 7.853 / 7.627, D = 0.5: 6.867 / 6.645 at 20 / 40 elements"),
+    (34.0, "smooth"): (11.91, 0.86, "D = 0.8: 13.045 / 12.769, D = 0.5: 11.693 / 11.047 at 20 / 40 elements"),
+    (34.0, "rough"): (20.55, 1.12, "D = 0.8: 22.209 / 21.381, D = 0.5: 21.138 / 19.718 at 20 / 40 elements"),
+}
+
+_TABLE = _TABLE + tuple(
+    {"phi_deg": phi, "base": base, "flow": "isochoric", "value": value, "band": band,
+     "kind": "computed, finite elements", "source": _FE, "table": readings, "notes": _FE_NOTES}
+    for (phi, base), (value, band, readings) in _FE_ISOCHORIC.items()
+)  # fmt: skip
 
 # Sources searched for published psi = 0 strip-footing N_gamma and what of them could be read.
 # fmt: off
@@ -340,14 +371,22 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
             assoc_ref = _MARTIN + " (exact value not retrieved; not computed by terradyn)"
             assoc_kind = _NR
     published = _best_published(phi_d, base, "isochoric")
+    fe_row = _lookup(phi_d, base, "isochoric", "computed, finite elements")
     if published:
         out.update(
             N_gamma_reference=published["value"],
             reference=f"{published['source']} ({published['table']})",
             reference_kind=published["kind"],
         )
+    elif fe_row:
+        out.update(N_gamma_reference=fe_row["value"], reference=f"{fe_row['source']} ({fe_row['table']})",
+                   reference_kind=fe_row["kind"])  # fmt: skip
     else:
         out.update(N_gamma_reference=davis, reference=davis_ref, reference_kind=davis_kind)
+    out.update(
+        N_gamma_fe_isochoric=fe_row["value"] if fe_row else None,
+        N_gamma_fe_band=fe_row["band"] if fe_row else None,
+    )
     out.update(
         N_gamma_published_non_associated=published["value"] if published else None,
         N_gamma_davis_estimate=davis,

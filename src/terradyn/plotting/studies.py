@@ -210,9 +210,20 @@ def plot_footing(result: Any) -> Any:
     x = np.array([0.0, 1.5 * result.settlement_m / b])
     ax.plot(x, (q_u + gamma * result.embedment_slope * x * b) / 1e3, "--", color="C1", label=fit_label)
     ref = result.reference.get("N_gamma_reference")
+    kind = str(result.reference.get("reference_kind", ""))
     if ref:
-        ax.axhline(0.5 * gamma * b * float(ref) / 1e3, color="C2", ls=":",
-                   label=rf"theory (isochoric): $N_\gamma$ = {float(ref):.3g}")  # fmt: skip
+        what = "theory (isochoric)"
+        band = result.reference.get("N_gamma_fe_band")
+        if kind.startswith("computed, finite elements"):
+            what = "finite elements (isochoric)"
+            lo, hi = (0.5 * gamma * b * (float(ref) + d * float(band or 0.0)) / 1e3 for d in (-1.0, 1.0))
+            ax.axhspan(lo, hi, color="C2", alpha=0.12, lw=0)
+        text = rf"{what}: $N_\gamma$ = {float(ref):.3g}" + (rf" $\pm$ {float(band):.2g}" if band else "")
+        ax.axhline(0.5 * gamma * b * float(ref) / 1e3, color="C2", ls=":", label=text)
+        davis = result.reference.get("N_gamma_davis_estimate")
+        if davis and kind.startswith("computed, finite elements"):
+            ax.axhline(0.5 * gamma * b * float(davis) / 1e3, color="C7", ls=":",
+                       label=rf"Davis estimate (isochoric): $N_\gamma$ = {float(davis):.3g}")  # fmt: skip
     for key, style, what in (
         ("N_gamma_upper_bound", "-.", "associated Mohr-Coulomb"),
         ("N_gamma_upper_bound_cone", (0, (5, 2, 1, 2, 1, 2)), "associated MPM cone (bound of the MPM)"),

@@ -114,8 +114,12 @@ class StripFootingResult:
             rec["N_gamma_phase_values"] = values
             rec["N_gamma_phase_spread"] = max(values) - min(values)
         ref = rec["N_gamma_reference"]
+        rec["reference_kind"] = self.reference.get("reference_kind")
+        rec["N_gamma_reference_band"] = self.reference.get("N_gamma_fe_band")
         if ref:
             rec["ratio_mpm_to_reference"] = self.N_gamma_mpm / float(ref)
+            # the target: within 10 % of the non-associated value
+            rec["within_10_percent_of_reference"] = abs(self.N_gamma_mpm / float(ref) - 1.0) <= 0.1
         if "N_gamma_associated" in self.reference:
             rec["N_gamma_associated"] = self.reference["N_gamma_associated"]
         # the rigorous bracket of a psi = 0 value (Radenkovic's theorems), None where unknown
