@@ -616,4 +616,3 @@ def converge_wheel_cmd(
             grid_phases=grid_phases,
         )
     _emit_convergence(res, fmt, out_path, plot_path, "MPM wheel")
-
