@@ -153,6 +153,8 @@ def test_the_fe_footing_command_prints_every_mesh_and_the_estimate(run_cli, tmp_
         (("--phi", "34", "--elements", "5,x,10"), "--elements"),
         (("--phi", "60"), "--phi"),
         (("--phi", "34", "--damping", "1"), "--damping"),
+        (("--phi", "34", "--crossings", "0"), "--crossings"),
+        (("--phi", "34", "--elements", "3,4,500"), "--elements"),  # refused before any mesh runs
     ],
 )
 def test_the_fe_footing_command_names_a_bad_flag(run_cli, args, flag):

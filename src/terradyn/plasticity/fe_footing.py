@@ -420,8 +420,10 @@ def fe_n_gamma_convergence(
     from ..studies.convergence import richardson
 
     meshes = tuple(elements)
-    if len(meshes) < 3 or len(set(meshes)) != len(meshes):
-        raise InputError("elements", list(meshes), "three or more distinct mesh sizes")
+    if (len(meshes) < 3 or len(set(meshes)) != len(meshes)
+            or not all(isinstance(n, int) and 2 <= n <= 400 for n in meshes)):  # fmt: skip
+        # checked before the first mesh runs, so a bad last mesh does not waste the others
+        raise InputError("elements", list(meshes), "three or more distinct integers in [2, 400]")
     cost = [float(n) ** 3 for n in meshes]
     total = sum(cost)
     done = 0.0
