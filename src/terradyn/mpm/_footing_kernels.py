@@ -1,0 +1,150 @@
+"""Numba loop of the MPM strip footing with its base as a grid boundary condition (no contact body).
+
+Used by :func:`terradyn.studies.mpm_footing_nodes.node_strip_footing`. The step is the MPM step of
+:func:`terradyn.mpm._kernels.advance` without a body (p2g, grid update with the walls, optional
+patch-averaged divergence, g2p); after the grid update the footing nodes take the footing's velocity
+and a symmetry plane at the left wall, if asked for, takes ``v_x = 0`` on both sides. Conventions
+(units, shapes, grid origin) as in :mod:`terradyn.mpm._kernels`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ._common_kernels import _MASS_EPS
+from ._kernels import g2p, grid_update, p2g, patch_divergence
+
+__all__: list[str] = []
+
+
+@njit(cache=True)
+def advance_footing(
+    n_steps,
+    step0,
+    pos,
+    vel,
+    aff,
+    stress,
+    mass,
+    vol,
+    gdot,
+    buf,
+    grid_mass,
+    grid_vel,
+    x0,
+    z0,
+    h,
+    dt,
+    gravity,
+    damping,
+    pad,
+    wall_kind,
+    wall_mu,
+    bounds,
+    material,
+    foot_i,
+    foot_j,
+    rough,
+    symmetric,
+    speed,
+    ramp_steps,
+    settled,
+    follow,
+    floor_z,
+    scratch_grid,
+    geo,
+    averaged,
+    forces,
+):
+    """Run ``n_steps`` steps (global step numbers ``step0 + k``).
+
+    Footing: the nodes ``foot_i[0] <= i <= foot_i[1]``, ``foot_j[0] <= j <= foot_j[1]`` holding mass
+    move down at ``speed`` [m/s] times a half-cosine ramp over the first ``ramp_steps`` steps
+    (``speed`` 0: they are held still); a ``rough`` base also holds ``v_x = 0`` there, a smooth one
+    leaves ``v_x`` free. ``symmetric``: the nodes ``i <= pad`` (the left wall and outside it) take
+    ``v_x = 0``. ``forces`` (n_steps, 3) receives (F_x, F_z, footing velocity) per step: the force of
+    the grains on the footing [N/m] (the impulse the condition takes from the grid over ``dt``) and
+    the prescribed velocity [m/s] (negative: down). ``settled`` [m] is the footing's settlement at
+    the first step. ``follow``: the grid moves down with the footing (node (i, j) at
+    ``(x0 + i h, z0 - s + j h)`` with s the settlement), so the footing nodes stay on its base
+    however far it goes; the floor is then the nodes at or below ``floor_z`` [m] (world), which get
+    the free-slip floor condition (no downward velocity), as the nodes ``j <= pad`` of a still grid.
+    """
+    g_mod = material[0]
+    lam = material[1]
+    dilatancy = material[8] if material.shape[0] > 8 else 0.0
+    loose_density = material[9] if material.shape[0] > 9 else material[7]
+    grid_vel_m = scratch_grid[:, :, 0:2]
+    node = scratch_grid[:, :, 2:5]
+    n_patch = grid_mass.shape[0] if averaged else 0
+    patch = np.zeros((n_patch, grid_mass.shape[1] if averaged else 0, 5, 2))
+    div_bar = np.empty(pos.shape[0] if averaged else 0)
+    keys = np.empty((pos.shape[0] if averaged else 0, 3), dtype=np.int64)
+    s = settled
+    for k in range(n_steps):
+        step = step0 + k
+        zg = z0 - s if follow else z0
+        ramp = 1.0
+        if step < ramp_steps:
+            ramp = 0.5 * (1.0 - np.cos(np.pi * (step + 0.5) / ramp_steps))
+        vz_foot = -speed * ramp
+        p2g(pos, vel, aff, stress, mass, vol, x0, zg, h, dt, buf)
+        grid_update(buf, grid_mass, grid_vel, dt, gravity, damping, pad, wall_kind, wall_mu)
+        if follow:
+            j_floor = int(np.floor((floor_z - zg) / h + 1e-9))
+            for i in range(grid_mass.shape[0]):
+                for j in range(pad + 1, j_floor + 1):
+                    if grid_vel[i, j, 1] < 0.0:
+                        grid_vel[i, j, 1] = 0.0
+        if symmetric:
+            for i in range(pad + 1):
+                for j in range(grid_mass.shape[1]):
+                    grid_vel[i, j, 0] = 0.0
+        fx = 0.0
+        fz = 0.0
+        for i in range(foot_i[0], foot_i[1] + 1):
+            for j in range(foot_j[0], foot_j[1] + 1):
+                m = grid_mass[i, j]
+                if m <= _MASS_EPS:
+                    continue
+                if rough:
+                    fx -= m * (0.0 - grid_vel[i, j, 0]) / dt
+                    grid_vel[i, j, 0] = 0.0
+                fz -= m * (vz_foot - grid_vel[i, j, 1]) / dt
+                grid_vel[i, j, 1] = vz_foot
+        if averaged:
+            patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, zg, h, patch, keys, div_bar)
+        g2p(
+            pos,
+            vel,
+            aff,
+            stress,
+            mass,
+            vol,
+            gdot,
+            grid_vel,
+            grid_vel_m,
+            geo,
+            node,
+            x0,
+            zg,
+            h,
+            dt,
+            bounds,
+            g_mod,
+            lam,
+            material[2],
+            material[3],
+            material[4],
+            material[5],
+            material[6],
+            material[7],
+            dilatancy,
+            loose_density,
+            div_bar,
+        )
+        forces[k, 0] = fx
+        forces[k, 1] = fz
+        forces[k, 2] = vz_foot
+        s -= vz_foot * dt

@@ -1,0 +1,308 @@
+"""The MPM strip footing with its base as a grid boundary condition: the continuum without the contact.
+
+:func:`terradyn.studies.mpm_verification.strip_footing` pushes a rigid plate through the grains with the
+body contact; its reading carries the contact's errors (the pressure steps each time the base crosses a
+node line, docs/mpm.md) on top of the continuum's. This case removes the contact: the grid nodes under
+the footing (``|x| <= B/2`` on the surface node line and the node line above it) take the footing's
+velocity, as the finite-element footing (:func:`terradyn.plasticity.fe_footing.fe_strip_footing`)
+prescribes its footing nodes. The grid stays where it is, so the footing does not embed (small
+settlement, like the FE), and the reading is the plateau of the bearing pressure, not an intercept.
+
+Everything else is the MPM of the intrusion runs: the bed of :func:`terradyn.mpm.solver.make_bed`
+(geostatic stress, K0 = nu / (1 - nu)), its damped settling (:func:`terradyn.mpm.model.default_settle_time`),
+the Dunatunga-Kamrin continuum with mu_s = mu_2 = sin(phi) (rate independent, isochoric), the point or
+patch-averaged volumetric update, quadratic B-splines and free-slip walls. A symmetry plane at x = 0
+(``v_x = 0`` on the nodes of the left wall) halves the grid.
+
+Loading: the footing velocity rises from 0 to ``speed`` over a half-cosine ramp of
+``ramp_crossings`` P-wave transits of the bed depth (a sudden start sends a stress wave of about
+rho c v, 2 kPa at 0.02 m/s, as large as the collapse pressure), then stays constant to the
+settlement ``settlement_ratio`` x B. The bearing pressure is the vertical impulse the footing nodes
+take from the grid per step, over the loaded half-width; N_gamma is 2 q / (gamma B) averaged over the
+last quarter of the settlement.
+
+Status: a diagnostic, not yet a reference (docs/mpm.md, "Footing as a grid boundary condition"). Its
+readings (34 deg smooth, 0.02 B) are 22.2 / 18.9 at B/10 / B/20 with the grid following the footing,
+30 % above the FE at the same element size, and at B/10 they change from 22.3 to 15.0 / 20.0 when the
+grid stays still (one / two footing node rows), and by 7 % between the half and the full domain at B/8:
+the base and the symmetry plane as node conditions are not yet resolution-independent.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError, SolverError, check_length, check_positive, check_range
+
+__all__ = ["NodeFooting", "NodeFootingConvergence", "node_footing_convergence", "node_strip_footing"]
+
+
+@dataclass(frozen=True)
+class NodeFooting:
+    """One node-footing run: ``N_gamma`` (mean of 2 q / (gamma B) over the last quarter of the
+    settlement), ``N_gamma_spread`` (max - min there), ``curve`` (settlement [m], pressure [Pa]) per
+    recorded row, and the discretisation."""
+
+    friction_angle_deg: float
+    base: str
+    width_m: float
+    cell_size_m: float
+    domain_m: tuple[float, float]
+    symmetric: bool
+    volumetric: str
+    particles_per_cell: int
+    speed_m_s: float
+    settlement_m: float
+    unit_weight_N_m3: float
+    N_gamma: float
+    N_gamma_spread: float
+    curve: tuple[np.ndarray, np.ndarray]
+    particles: int
+    steps: int
+    wall_s: float
+
+    def record(self) -> dict[str, Any]:
+        return {
+            "friction_angle_deg": self.friction_angle_deg,
+            "base": self.base,
+            "width_m": self.width_m,
+            "cell_size_m": self.cell_size_m,
+            "cells_per_width": self.width_m / self.cell_size_m,
+            "domain_m": list(self.domain_m),
+            "symmetric": self.symmetric,
+            "volumetric": self.volumetric,
+            "particles_per_cell": self.particles_per_cell,
+            "speed_m_s": self.speed_m_s,
+            "settlement_m": self.settlement_m,
+            "N_gamma": self.N_gamma,
+            "N_gamma_spread": self.N_gamma_spread,
+            "particles": self.particles,
+            "steps": self.steps,
+            "wall_s": self.wall_s,
+        }
+
+
+def node_strip_footing(
+    friction_angle_deg: float,
+    base: str = "smooth",
+    *,
+    material: Any = "MS",
+    width: float = 0.04,
+    cell_size: float | None = None,
+    domain_widths: tuple[float, float] = (4.0, 2.0),
+    symmetric: bool = True,
+    settlement_ratio: float = 0.01,
+    speed: float = 0.01,
+    ramp_crossings: float = 10.0,
+    volumetric: str = "patch",
+    particles_per_cell: int = 2,
+    cfl: float = 0.3,
+    follow: bool = True,
+    base_rows: int = 2,
+    progress: Callable[[float, float], None] | None = None,
+) -> NodeFooting:
+    """N_gamma of a rigid strip footing of ``width`` B [m] whose base is the grid nodes under it.
+
+    ``friction_angle_deg`` phi (continuum mu_s = sin phi), ``base`` ``"smooth"`` (v_x free at the
+    footing nodes) or ``"rough"`` (v_x = 0). ``cell_size`` [m] (default B/20, B/2 a whole number of
+    cells); ``domain_widths`` (half-width from the footing centre, depth) in B; ``symmetric`` grids
+    only x >= 0 with a symmetry plane at x = 0 (else both halves). Loading as in the module docstring:
+    ``speed`` [m/s] after a ramp of ``ramp_crossings`` wave transits, to ``settlement_ratio`` x B.
+    ``volumetric`` ``"point"`` or ``"patch"`` and ``particles_per_cell`` as in
+    :class:`terradyn.mpm.specs.Resolution`. ``progress(done, total)`` gets the steps done.
+    """
+    from .. import materials
+    from ..mpm import _footing_kernels as FK
+    from ..mpm import _kernels as K
+    from ..mpm.model import BedPacking, default_settle_time, resolve_model
+    from ..mpm.solver import GRID_PAD, BedGrid, initial_density, make_bed, stable_time_step
+    from .mpm_calibration import poisson_ratio_for_stability
+
+    phi_deg = check_range("friction_angle_deg", friction_angle_deg, 20.0, 45.0, unit="deg")
+    if base not in ("smooth", "rough"):
+        raise InputError("base", base, "'smooth' or 'rough'")
+    if volumetric not in ("point", "patch"):
+        raise InputError("volumetric", volumetric, "'point' or 'patch'")
+    b = check_length("width", width)
+    h = b / 20.0 if cell_size is None else check_positive("cell_size", cell_size)
+    n_half = round(0.5 * b / h)
+    if n_half < 2 or abs(n_half * h - 0.5 * b) > 1e-6 * h:
+        raise InputError(
+            "cell_size", h, f"B/2 / k for a whole k >= 2 (B = {b:g} m)", "the footing edge is a node"
+        )
+    half_l, depth_b = (float(v) for v in domain_widths)
+    if not (1.0 <= half_l <= 20.0 and 0.5 <= depth_b <= 10.0):
+        raise InputError(
+            "domain_widths", domain_widths, "(half-width in [1, 20], depth in [0.5, 10]) footing widths"
+        )
+    ratio = check_range("settlement_ratio", settlement_ratio, 1e-3, 0.05)
+    check_positive("speed", speed)
+    check_range("ramp_crossings", ramp_crossings, 0.0, 1e3)
+    mat = materials.get(material) if isinstance(material, str) else material
+    if mat.continuum is None or mat.bulk_density is None:
+        raise InputError("material", mat.name, "a medium with a [continuum] table and a bulk density")
+    mu = math.sin(math.radians(phi_deg))
+    nu = max(mat.continuum.poisson_ratio, poisson_ratio_for_stability(mu))
+    model = resolve_model(mat, friction_coefficient=mu, poisson_ratio=nu)
+
+    half_cells = max(n_half + 2, round(half_l * b / h))
+    grid = BedGrid(
+        width=(half_cells if symmetric else 2 * half_cells) * h,
+        depth=depth_b * b,
+        air=4.0 * h,
+        cell_size=h,
+        x_left=0.0 if symmetric else -half_cells * h,
+    )
+    state = make_bed(model, grid, particles_per_cell=particles_per_cell, gravity=9.81)
+    rho = initial_density(model.bulk_density, model.critical_density, BedPacking.CONSOLIDATED)
+    gamma = rho * 9.81
+    nx, nz = grid.shape
+    x0, z0 = grid.origin
+    i_centre = round(-x0 / h)
+    j_surface = round(-z0 / h)
+    foot_i = np.array([i_centre if symmetric else i_centre - n_half, i_centre + n_half], dtype=np.int64)
+    foot_j = np.array([j_surface, j_surface + base_rows - 1], dtype=np.int64)
+
+    dt = stable_time_step(model, h, cfl=cfl, speed=speed)
+    wave = model.wave_speed()
+    n_settle = max(1, round(default_settle_time(model, grid.depth, BedPacking.CONSOLIDATED, 9.81) / dt))
+    ramp_steps = round(ramp_crossings * grid.depth / wave / dt)
+    settlement = ratio * b
+    # the ramp covers half its duration x speed; the rest at constant speed
+    ramp_travel = 0.5 * ramp_steps * dt * speed
+    if ramp_travel >= settlement:
+        raise InputError(
+            "speed",
+            speed,
+            f"below {speed * settlement / ramp_travel:.3g} m/s",
+            "the ramp must end before the reading",
+        )
+    n_push = ramp_steps + math.ceil((settlement - ramp_travel) / (speed * dt))
+    total = n_settle + n_push
+    record_every = max(1, n_push // 400)
+
+    buf = K.make_buffer(nx, nz, len(state.pos))
+    gm = np.zeros((nx, nz))
+    gv = np.zeros((nx, nz, 2))
+    scratch, geo, _ = K.make_scratch(nx, nz, len(state.pos))
+    kinds = np.zeros(3, dtype=np.int64)
+    mus = np.zeros(3)
+    mat_arr = model.as_kernel_array()
+    args = (state.pos, state.vel, state.aff, state.stress, state.mass, state.vol, state.gdot, buf, gm, gv,
+            x0, z0, h, dt, 9.81)  # fmt: skip
+    t0 = time.perf_counter()
+    done = 0
+
+    def chunk(n: int, step0: int, damping: float, v: float, settled: float) -> np.ndarray:
+        nonlocal done
+        f = np.zeros((n, 3))
+        FK.advance_footing(n, step0, *args, damping, GRID_PAD, kinds, mus, grid.bounds, mat_arr,
+                           foot_i, foot_j, base == "rough", symmetric, v, ramp_steps, settled, follow,
+                           -grid.depth, scratch, geo, volumetric == "patch", f)  # fmt: skip
+        if not np.all(np.isfinite(f)):
+            raise SolverError(f"the node footing went unstable (cell {h:g} m); lower cfl")
+        done += n
+        if progress is not None:
+            progress(float(done), float(total))
+        return f
+
+    settle_chunk = max(1, n_settle // 20)
+    k = 0
+    while k < n_settle:
+        n = min(settle_chunk, n_settle - k)
+        chunk(n, 0, wave / grid.depth, 0.0, 0.0)  # the footing nodes held still while the bed settles
+        k += n
+    rows = []
+    k = 0
+    s = 0.0
+    while k < n_push:
+        n = min(record_every, n_push - k)
+        f = chunk(n, k, 0.0, speed, s)
+        s += float(-np.sum(f[:, 2]) * dt)
+        rows.append((s, float(np.mean(f[:, 1]))))
+        k += n
+    wall = time.perf_counter() - t0
+    arr = np.array(rows)
+    loaded = (0.5 if symmetric else 1.0) * b
+    q = arr[:, 1] / loaded
+    n_gamma = 2.0 * q / (gamma * b)
+    tail = n_gamma[arr[:, 0] >= 0.75 * settlement]
+    return NodeFooting(
+        friction_angle_deg=phi_deg,
+        base=base,
+        width_m=b,
+        cell_size_m=h,
+        domain_m=(grid.width, grid.depth),
+        symmetric=symmetric,
+        volumetric=volumetric,
+        particles_per_cell=particles_per_cell,
+        speed_m_s=float(speed),
+        settlement_m=settlement,
+        unit_weight_N_m3=gamma,
+        N_gamma=float(np.mean(tail)),
+        N_gamma_spread=float(np.max(tail) - np.min(tail)),
+        curve=(arr[:, 0], q),
+        particles=len(state.pos),
+        steps=total,
+        wall_s=wall,
+    )
+
+
+@dataclass(frozen=True)
+class NodeFootingConvergence:
+    """:func:`node_strip_footing` at several cell sizes with the Richardson estimate."""
+
+    runs: tuple[NodeFooting, ...]
+    estimate: Any  # terradyn.studies.convergence.RichardsonEstimate
+
+    def record(self) -> dict[str, Any]:
+        est = self.estimate
+        return {
+            "runs": [r.record() for r in self.runs],
+            "N_gamma_finest": est.finest,
+            "observed_order": est.order,
+            "N_gamma_extrapolated": est.extrapolated,
+            "error_band_of_finest": est.error_band,
+            "monotone": est.monotone,
+            "note": est.note,
+        }
+
+
+def node_footing_convergence(
+    friction_angle_deg: float,
+    base: str = "smooth",
+    *,
+    cells_per_width: Sequence[int] = (10, 20, 40),
+    width: float = 0.04,
+    progress: Callable[[float, float], None] | None = None,
+    **kwargs: Any,
+) -> NodeFootingConvergence:
+    """:func:`node_strip_footing` at B / n for each n of ``cells_per_width`` (three or more distinct
+    even integers) and the Richardson estimate of the three finest. ``progress(done, total)`` after
+    each run, work counted as n^3 (cells x steps)."""
+    from .convergence import richardson
+
+    ns = tuple(cells_per_width)
+    if (
+        len(ns) < 3
+        or len(set(ns)) != len(ns)
+        or not all(isinstance(n, int) and 4 <= n <= 400 and n % 2 == 0 for n in ns)
+    ):
+        raise InputError("cells_per_width", list(ns), "three or more distinct even integers in [4, 400]")
+    ns = tuple(sorted(ns))
+    cost = [float(n) ** 3 for n in ns]
+    runs = []
+    done = 0.0
+    for n, c in zip(ns, cost, strict=True):
+        runs.append(node_strip_footing(friction_angle_deg, base, width=width, cell_size=width / n, **kwargs))
+        done += c
+        if progress is not None:
+            progress(done, sum(cost))
+    est = richardson([r.cell_size_m for r in runs[-3:]], [r.N_gamma for r in runs[-3:]])
+    return NodeFootingConvergence(runs=tuple(runs), estimate=est)

@@ -1,0 +1,36 @@
+"""The node-footing diagnostic (the MPM continuum under a footing that is a grid boundary condition)."""
+
+import math
+
+import pytest
+
+from terradyn.errors import InputError
+from terradyn.studies.mpm_footing_nodes import node_strip_footing
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "field"),
+    [
+        ({"cell_size": 0.003}, "cell_size"),
+        ({"base": "sticky"}, "base"),
+        ({"domain_widths": (0.5, 1.0)}, "domain_widths"),
+        ({"volumetric": "cell"}, "volumetric"),
+        ({"speed": 1.0}, "speed"),
+    ],
+)
+def test_bad_input_names_the_field(kwargs, field):
+    args = {"base": "smooth", **kwargs}
+    base = args.pop("base")
+    with pytest.raises(InputError) as err:
+        node_strip_footing(34.0, base, **args)
+    assert err.value.field == field
+
+
+def test_a_coarse_run_loads_from_zero_to_a_plateau():
+    r = node_strip_footing(34.0, "smooth", cell_size=0.005, domain_widths=(2.0, 1.0), settlement_ratio=0.02)
+    s, q = r.curve
+    n = 2.0 * q / (r.unit_weight_N_m3 * r.width_m)
+    assert abs(n[0]) < 0.1 * r.N_gamma  # the ramp starts from rest
+    assert math.isfinite(r.N_gamma) and r.N_gamma > 1.0
+    assert r.N_gamma_spread < 0.05 * r.N_gamma  # a plateau, not a rising or ringing curve
+    assert s[-1] == pytest.approx(r.settlement_m, rel=0.02)
