@@ -5,7 +5,7 @@ import math
 import pytest
 
 from terradyn.errors import InputError
-from terradyn.studies.mpm_footing_nodes import node_strip_footing
+from terradyn.studies.mpm_footing_nodes import node_footing_convergence, node_strip_footing
 
 
 @pytest.mark.parametrize(
@@ -34,3 +34,30 @@ def test_a_coarse_run_loads_from_zero_to_a_plateau():
     assert math.isfinite(r.N_gamma) and r.N_gamma > 1.0
     assert r.N_gamma_spread < 0.05 * r.N_gamma  # a plateau, not a rising or ringing curve
     assert s[-1] == pytest.approx(r.settlement_m, rel=0.02)
+
+
+def test_convergence_runs_each_resolution_and_estimates_from_the_three_finest():
+    calls = []
+    conv = node_footing_convergence(
+        34.0,
+        "smooth",
+        cells_per_width=(8, 4, 6),
+        domain_widths=(2.0, 1.0),
+        settlement_ratio=0.02,
+        progress=lambda done, total: calls.append((done, total)),
+    )
+    assert [r.cell_size_m for r in conv.runs] == pytest.approx([0.01, 0.04 / 6, 0.005])  # coarse to fine
+    rec = conv.record()
+    assert [r["cells_per_width"] for r in rec["runs"]] == pytest.approx([4, 6, 8])
+    assert rec["N_gamma_finest"] == conv.runs[-1].N_gamma
+    assert set(rec) >= {"observed_order", "N_gamma_extrapolated", "error_band_of_finest", "monotone", "note"}
+    # work counted as n^3, reported after each run, ending at the total
+    assert [c[0] for c in calls] == pytest.approx([64.0, 280.0, 792.0])
+    assert all(c[1] == 792.0 for c in calls)
+
+
+@pytest.mark.parametrize("cells", [(10, 20), (10, 10, 20), (10, 15, 20), (2, 4, 6)])
+def test_convergence_refuses_bad_resolutions(cells):
+    with pytest.raises(InputError) as err:
+        node_footing_convergence(34.0, cells_per_width=cells)
+    assert err.value.field == "cells_per_width"

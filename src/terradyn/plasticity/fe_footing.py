@@ -383,7 +383,6 @@ class FEConvergence:
 
     def record(self) -> dict[str, Any]:
         """JSON-ready: the runs (mesh, N_gamma, spread, wall time) and the estimate."""
-        est = self.estimate
         first = self.runs[0]
         return {
             "friction_coefficient": first.friction_coefficient,
@@ -393,12 +392,7 @@ class FEConvergence:
                 {"elements_per_half_width": n, **r.record(), "wall_s": w}
                 for n, r, w in zip(self.elements_per_half_width, self.runs, self.wall_s, strict=True)
             ],
-            "N_gamma_finest": est.finest,
-            "observed_order": est.order,
-            "N_gamma_extrapolated": est.extrapolated,
-            "error_band_of_finest": est.error_band,
-            "monotone": est.monotone,
-            "note": est.note,
+            **self.estimate.record("N_gamma"),
         }
 
 

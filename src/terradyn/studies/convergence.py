@@ -72,6 +72,19 @@ class RichardsonEstimate:
     monotone: bool
     note: str = ""
 
+    def record(self, quantity: str) -> dict[str, Any]:
+        """JSON-ready fields of the estimate of ``quantity`` (a key prefix such as ``"N_gamma"``):
+        ``{quantity}_finest``, ``observed_order``, ``{quantity}_extrapolated``,
+        ``error_band_of_finest``, ``monotone`` and ``note``."""
+        return {
+            f"{quantity}_finest": self.finest,
+            "observed_order": self.order,
+            f"{quantity}_extrapolated": self.extrapolated,
+            "error_band_of_finest": self.error_band,
+            "monotone": self.monotone,
+            "note": self.note,
+        }
+
     @property
     def relative_error(self) -> float | None:
         """|finest - extrapolated| / |extrapolated| [-] (None without an extrapolation)."""

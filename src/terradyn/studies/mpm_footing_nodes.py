@@ -262,16 +262,7 @@ class NodeFootingConvergence:
     estimate: Any  # terradyn.studies.convergence.RichardsonEstimate
 
     def record(self) -> dict[str, Any]:
-        est = self.estimate
-        return {
-            "runs": [r.record() for r in self.runs],
-            "N_gamma_finest": est.finest,
-            "observed_order": est.order,
-            "N_gamma_extrapolated": est.extrapolated,
-            "error_band_of_finest": est.error_band,
-            "monotone": est.monotone,
-            "note": est.note,
-        }
+        return {"runs": [r.record() for r in self.runs], **self.estimate.record("N_gamma")}
 
 
 def node_footing_convergence(
