@@ -1,5 +1,6 @@
 """The node-footing diagnostic (the MPM continuum under a footing that is a grid boundary condition)."""
 
+import json
 import math
 
 import pytest
@@ -61,3 +62,42 @@ def test_convergence_refuses_bad_resolutions(cells):
     with pytest.raises(InputError) as err:
         node_footing_convergence(34.0, cells_per_width=cells)
     assert err.value.field == "cells_per_width"
+
+
+def test_the_node_footing_command_prints_every_resolution_and_the_reference(run_cli, tmp_path):
+    plot = tmp_path / "nodes.png"
+    code, out, err = run_cli("mpm", "verify", "node-footing", "--phi", "34", "--cells", "4,6,8",
+                             "--domain", "2,1", "--plot", str(plot), "--format", "json")  # fmt: skip
+    assert code == 0, err
+    rec = json.loads(out)
+    assert rec["base"] == "smooth" and rec["phi_deg"] == 34.0
+    assert [r["cells_per_width"] for r in rec["runs"]] == pytest.approx([4, 6, 8])
+    assert rec["N_gamma_finest"] == rec["runs"][-1]["N_gamma"]
+    # the isochoric reference of the case, and the finest reading against it
+    assert rec["N_gamma_reference"] > 0 and rec["reference_kind"]
+    assert rec["ratio_finest_to_reference"] == pytest.approx(rec["N_gamma_finest"] / rec["N_gamma_reference"])
+    # a coarse study has a wide band: not a converged reading, whatever its ratio
+    assert rec["error_band_of_finest"] > 0.1 * rec["N_gamma_reference"]
+    assert rec["within_10_percent_of_reference"] is False
+    assert plot.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(
+    ("args", "flag"),
+    [
+        (("--phi", "34", "--cells", "10,20"), "--cells"),
+        (("--phi", "34", "--cells", "10,x,40"), "--cells"),
+        (("--phi", "34", "--domain", "4"), "--domain"),
+        (("--phi", "34", "--domain", "0.5,2"), "--domain"),
+        (("--phi", "34", "--base", "sticky"), "--base"),
+        (("--phi", "60"), "--phi"),
+        (("--phi", "34", "--speed", "5"), "--speed"),
+        (("--phi", "34", "--settlement-ratio", "0.5"), "--settlement-ratio"),
+        (("--phi", "34", "--volumetric", "cell"), "--volumetric"),
+    ],
+)
+def test_the_node_footing_command_names_a_bad_flag(run_cli, args, flag):
+    code, out, err = run_cli("mpm", "verify", "node-footing", *args)
+    assert code == 1 and out == ""
+    assert err.startswith(f"terradyn: error: {flag} = "), err
+    assert len(err.strip().splitlines()) == 1

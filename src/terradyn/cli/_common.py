@@ -38,12 +38,15 @@ def emit(
     out: Path | None,
     *,
     title: str = "",
+    table: str | None = None,
 ) -> None:
     """Print the result in ``fmt``; with ``out`` also write it there (JSON for .json, else CSV).
+    ``table`` replaces the printed text in table format (e.g. a record with nested rows printed as
+    two tables); the file still holds ``data``.
 
     Inside a command both go through the command's output set: printed and written only when the
     whole command has succeeded."""
-    text = format_output(data, fmt, title=title)
+    text = table if table is not None and fmt is OutputFormat.table else format_output(data, fmt, title=title)
     if out is not None:
         file_fmt = fmt
         if fmt is OutputFormat.table:

@@ -9,7 +9,7 @@ import typer
 
 from ..errors import InputError, check_finite
 from ..mpm.specs import Resolution
-from ._common import OutputFormat, emit, fraction_progress, save_figure
+from ._common import OutputFormat, emit, format_output, fraction_progress, parse_float_list, save_figure
 from .mpm_options import MPMOptions
 from .options import FORMAT, MATERIAL, OUT, out_file, plot_file
 
@@ -128,7 +128,105 @@ def verify_fe_footing(
 
         save_figure(plot_fe_footing(res, phi_deg, strip_footing_reference(phi_deg, base)), plot_path)
     record = {"phi_deg": phi_deg, **res.record()}
-    emit(record, fmt, out_path, title=f"FE strip footing, phi = {phi_deg:g} deg, {base} base, {flow} flow")
+    title = f"FE strip footing, phi = {phi_deg:g} deg, {base} base, {flow} flow"
+    emit(record, fmt, out_path, title=title, table=_convergence_table(record, title, _FE_COLUMNS))
+
+
+@verify_app.command("node-footing")
+def verify_node_footing(
+    phi: float = typer.Option(..., "--phi", help="Friction angle phi [deg] (continuum mu_s = sin phi)."),
+    base: str = typer.Option("smooth", "--base", help="Footing base: rough (no slip) or smooth."),
+    cells_per_width: str = typer.Option(
+        "10,20,40",
+        "--cells",
+        help="Three or more resolutions, cells across the footing width (even, comma list).",
+    ),
+    width: float = typer.Option(0.04, "--footing-width", help="Footing width B [m]."),
+    material: str = MATERIAL,
+    speed: float = typer.Option(0.01, "--speed", help="Footing speed after the start-up ramp [m/s]."),
+    settlement_ratio: float = typer.Option(
+        0.02, "--settlement-ratio", help="Settlement s/B [-] of the push; the reading is its last quarter."
+    ),
+    domain_widths: str = typer.Option(
+        "4,2", "--domain", help="Half-width and depth of the bed, in footing widths (comma pair)."
+    ),
+    full_domain: bool = typer.Option(
+        False, "--full-domain", help="Grid both halves instead of a symmetry plane at the centre line."
+    ),
+    particles_per_cell: int = MPMOptions.ppc,
+    volumetric: str = typer.Option(
+        "patch", "--volumetric", help="Velocity divergence of the volume and stress update: patch or point."
+    ),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = typer.Option(
+        None, "--plot", help="Bearing factor against settlement at every resolution (.png/.pdf/.svg/.jpg)."
+    ),
+) -> None:
+    """N_gamma of the MPM continuum under a footing whose base is a grid condition (no contact body),
+    at three or more resolutions, with the Richardson estimate and the isochoric reference.
+
+    The continuum's own check against plasticity theory: the contact's errors are left out
+    (docs/mpm.md, "Footing as a grid boundary condition")."""
+    from ..studies.mpm_footing_nodes import node_footing_convergence
+
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    phi_deg = check_finite("--phi", phi)
+    resolutions = _int_list("--cells", cells_per_width, "a comma list of even integers, e.g. 10,20,40")
+    domain = parse_float_list("--domain", domain_widths)
+    if len(domain) != 2:
+        raise InputError("--domain", domain_widths, "a comma pair: half-width, depth (footing widths)")
+    # the rest is checked by the library, its errors named by these flags
+    with fraction_progress("MPM node footing", "of the work") as bar:
+        res = node_footing_convergence(
+            phi_deg, base, cells_per_width=resolutions, width=width, material=material, speed=speed,
+            settlement_ratio=settlement_ratio, domain_widths=(domain[0], domain[1]),
+            symmetric=not full_domain, volumetric=volumetric, particles_per_cell=particles_per_cell,
+            progress=lambda done, total: bar(done / total, done / total),
+        )  # fmt: skip
+    if plot_path is not None:
+        from ..plotting.studies import plot_node_footing
+
+        save_figure(plot_node_footing(res), plot_path)
+    record = {"phi_deg": phi_deg, "base": base, **res.record()}
+    title = f"MPM node footing, phi = {phi_deg:g} deg, {base} base"
+    emit(record, fmt, out_path, title=title, table=_convergence_table(record, title, _NODE_COLUMNS))
+
+
+_FE_COLUMNS = (
+    "elements_per_half_width",
+    "element_size_m",
+    "N_gamma",
+    "N_gamma_peak",
+    "N_gamma_spread",
+    "wall_s",
+)
+_NODE_COLUMNS = (
+    "cells_per_width",
+    "cell_size_m",
+    "N_gamma",
+    "N_gamma_spread",
+    "particles",
+    "steps",
+    "wall_s",
+)
+
+
+def _convergence_table(record: dict[str, Any], title: str, columns: tuple[str, ...]) -> str:
+    """A convergence record as two tables: one row per resolution, then the estimate."""
+    rows = [{k: run[k] for k in columns if k in run} for run in record["runs"]]
+    summary = {k: v for k, v in record.items() if k != "runs"}
+    table = OutputFormat.table
+    return (
+        format_output(rows, table, title=f"{title}: runs") + "\n" + format_output(summary, table, title=title)
+    )
+
+
+def _int_list(flag: str, text: str, allowed: str) -> tuple[int, ...]:
+    try:
+        return tuple(int(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(flag, text, allowed) from None
 
 
 def _footing_fields(res: Any, slip_lines: bool) -> Any:

@@ -261,22 +261,70 @@ def plot_fe_footing(result: Any, phi_deg: float, reference: dict[str, Any] | Non
     if est.extrapolated is not None:
         label = rf"Richardson (order {est.order:.2g}): $N_\gamma$ = {est.extrapolated:.3g}"
         ax.axhline(est.extrapolated, color="k", ls="--", lw=1.0, label=label)
-    for key, style, what in (
-        ("N_gamma_davis_estimate", ":", "Davis estimate (isochoric)"),
-        ("N_gamma_associated", "-.", "associated Mohr-Coulomb"),
-        ("N_gamma_upper_bound_cone", (0, (5, 2, 1, 2, 1, 2)), "associated cone"),
-    ):
+    _reference_lines(
+        ax, reference, ("N_gamma_davis_estimate", "N_gamma_associated", "N_gamma_upper_bound_cone")
+    )
+    first = result.runs[0]
+    _bearing_axes(ax)
+    ax.set_title(rf"FE strip footing, cone of $\phi$ = {phi_deg:g} deg, {first.base} base, {first.flow} flow")
+    return fig
+
+
+_REFERENCE_LINES = {
+    "N_gamma_davis_estimate": (":", "Davis estimate (isochoric)"),
+    "N_gamma_associated": ("-.", "associated Mohr-Coulomb"),
+    "N_gamma_upper_bound_cone": ((0, (5, 2, 1, 2, 1, 2)), "associated cone"),
+}
+
+
+def _reference_lines(ax: Any, reference: dict[str, Any] | None, keys: tuple[str, ...]) -> None:
+    for key in keys:
         value = (reference or {}).get(key)
         if value:
+            style, what = _REFERENCE_LINES[key]
             ax.axhline(
                 float(value), color="C3", ls=style, lw=1.0, label=rf"{what}: $N_\gamma$ = {float(value):.3g}"
             )
-    first = result.runs[0]
+
+
+def _bearing_axes(ax: Any) -> None:
     ax.set_xlabel("settlement / footing width [-]")
     ax.set_ylabel(r"bearing factor $2q / (\gamma B)$ [-]")
     ax.set_xlim(left=0.0)
     ax.set_ylim(bottom=0.0)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    ax.set_title(rf"FE strip footing, cone of $\phi$ = {phi_deg:g} deg, {first.base} base, {first.flow} flow")
+
+
+def plot_node_footing(result: Any) -> Any:
+    """Bearing factor 2 q / (gamma B) against settlement / width of the MPM footing whose base is a
+    grid condition (:class:`~terradyn.studies.mpm_footing_nodes.NodeFootingConvergence`) at every cell
+    size, with each reading (the mean of the last quarter), the Richardson estimate, the isochoric
+    reference with its band and the Davis and associated values."""
+    fig, axes = new_figure(1, 1, figsize=(6.4, 4.2))
+    ax = axes[0, 0]
+    for k, run in enumerate(result.runs):
+        s, q = run.curve
+        scale = 2.0 / (run.unit_weight_N_m3 * run.width_m)
+        label = rf"B/{run.width_m / run.cell_size_m:.0f}: $N_\gamma$ = {run.N_gamma:.3g}"
+        ax.plot(s / run.width_m, q * scale, color=f"C{k}", lw=1.0, label=label)
+    est = result.estimate
+    if est.extrapolated is not None:
+        label = rf"Richardson (order {est.order:.2g}): $N_\gamma$ = {est.extrapolated:.3g}"
+        ax.axhline(est.extrapolated, color="k", ls="--", lw=1.0, label=label)
+    ref = result.reference.get("N_gamma_reference")
+    if ref:
+        band = result.reference.get("N_gamma_fe_band") or 0.0
+        kind = result.reference.get("reference_kind") or "reference"
+        ax.axhline(float(ref), color="C7", lw=1.5, label=rf"isochoric {kind}: $N_\gamma$ = {float(ref):.3g}")
+        if band:
+            ax.axhspan(float(ref) - band, float(ref) + band, color="C7", alpha=0.2, lw=0)
+    _reference_lines(ax, result.reference, ("N_gamma_davis_estimate", "N_gamma_associated"))
+    _bearing_axes(ax)
+    first = result.runs[0]
+    ax.set_title(
+        rf"MPM footing as a grid condition, $\phi$ = {first.friction_angle_deg:g} deg, {first.base} base, "
+        f"{first.speed_m_s:g} m/s",
+        fontsize=9,
+    )
     return fig
