@@ -101,3 +101,17 @@ def test_the_node_footing_command_names_a_bad_flag(run_cli, args, flag):
     assert code == 1 and out == ""
     assert err.startswith(f"terradyn: error: {flag} = "), err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_the_following_grid_keeps_its_floor_past_half_a_cell():
+    # 0.05 B at B/16 is 0.8 of a cell: a floor on the node line at or below the world floor moved down
+    # with the grid, the bed sank with it and the plateau fell (last quarter / second quarter 0.74);
+    # the floor on the nearest node line keeps it (1.09)
+    r = node_strip_footing(
+        34.0, "rough", cell_size=0.04 / 16, domain_widths=(2.0, 1.0), settlement_ratio=0.05, follow=True
+    )
+    s, q = r.curve
+    assert s[-1] > 0.75 * r.cell_size_m
+    second_quarter = q[(s >= 0.25 * s[-1]) & (s <= 0.5 * s[-1])].mean()
+    last_quarter = q[s >= 0.75 * s[-1]].mean()
+    assert last_quarter >= 0.9 * second_quarter

@@ -148,7 +148,7 @@ def verify_node_footing(
         0.02, "--settlement-ratio", help="Settlement s/B [-] of the push; the reading is its last quarter."
     ),
     domain_widths: str = typer.Option(
-        "4,2", "--domain", help="Half-width and depth of the bed, in footing widths (comma pair)."
+        "6,3", "--domain", help="Half-width and depth of the bed, in footing widths (comma pair)."
     ),
     full_domain: bool = typer.Option(
         False, "--full-domain", help="Grid both halves instead of a symmetry plane at the centre line."

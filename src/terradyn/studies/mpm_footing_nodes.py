@@ -95,7 +95,7 @@ def node_strip_footing(
     material: Any = "MS",
     width: float = 0.04,
     cell_size: float | None = None,
-    domain_widths: tuple[float, float] = (4.0, 2.0),
+    domain_widths: tuple[float, float] = (6.0, 3.0),
     symmetric: bool = True,
     settlement_ratio: float = 0.01,
     speed: float = 0.01,
@@ -111,9 +111,14 @@ def node_strip_footing(
 
     ``friction_angle_deg`` phi (continuum mu_s = sin phi), ``base`` ``"smooth"`` (v_x free at the
     footing nodes) or ``"rough"`` (v_x = 0). ``cell_size`` [m] (default B/20, B/2 a whole number of
-    cells); ``domain_widths`` (half-width from the footing centre, depth) in B; ``symmetric`` grids
-    only x >= 0 with a symmetry plane at x = 0 (else both halves). Loading as in the module docstring:
-    ``speed`` [m/s] after a ramp of ``ramp_crossings`` wave transits, to ``settlement_ratio`` x B.
+    cells); ``domain_widths`` (half-width from the footing centre, depth) in B, by default the FE
+    reference's 6 B x 3 B (at B/20 the 34 deg rough footing reads 24.3 / 26.4 / 26.5 in 4 x 2 /
+    6 x 3 / 8 x 4, the smooth one 18.9 / 18.6 / 18.4); ``symmetric`` grids only x >= 0 with a
+    symmetry plane at x = 0 (else both halves). Loading as in the module docstring: ``speed`` [m/s]
+    after a ramp of ``ramp_crossings`` wave transits, to ``settlement_ratio`` x B; ``cfl`` as in
+    :class:`terradyn.mpm.specs.Resolution` (at coarse cells the reading depends on ``speed / cfl``,
+    docs/mpm.md). ``follow`` moves the grid down with the footing (else the grid stays and the
+    footing nodes are the surface node line and the ``base_rows - 1`` lines above it).
     ``volumetric`` ``"point"`` or ``"patch"`` and ``particles_per_cell`` as in
     :class:`terradyn.mpm.specs.Resolution`. ``progress(done, total)`` gets the steps done.
     """
