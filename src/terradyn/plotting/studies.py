@@ -316,7 +316,10 @@ def plot_node_footing(result: Any) -> Any:
     if ref:
         band = result.reference.get("N_gamma_fe_band") or 0.0
         kind = result.reference.get("reference_kind") or "reference"
-        ax.axhline(float(ref), color="C7", lw=1.5, label=rf"isochoric {kind}: $N_\gamma$ = {float(ref):.3g}")
+        label = rf"isochoric reference ({kind}): $N_\gamma$ = {float(ref):.3g}"
+        if band:
+            label += rf" $\pm$ {band:.2g}"
+        ax.axhline(float(ref), color="C7", lw=1.5, label=label)
         if band:
             ax.axhspan(float(ref) - band, float(ref) + band, color="C7", alpha=0.2, lw=0)
     _reference_lines(ax, result.reference, ("N_gamma_davis_estimate", "N_gamma_associated"))
