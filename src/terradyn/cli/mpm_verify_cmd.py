@@ -111,10 +111,7 @@ def verify_fe_footing(
     phi_deg = check_finite("--phi", phi)
     if not 10.0 <= phi_deg <= 45.0:
         raise InputError("--phi", phi, "an angle in [10, 45] deg")
-    try:
-        meshes = tuple(int(v) for v in elements.split(","))
-    except ValueError:
-        raise InputError("--elements", elements, "a comma list of integers, e.g. 10,20,40") from None
+    meshes = _int_list("--elements", elements, "a comma list of integers, e.g. 10,20,40")
     # base, flow, damping, crossings and the meshes are checked by the library, named by their flags
     with fraction_progress("FE strip footing", "of the work") as bar:
         res = fe_n_gamma_convergence(

@@ -101,7 +101,7 @@ def node_strip_footing(
     cell_size: float | None = None,
     domain_widths: tuple[float, float] = (6.0, 3.0),
     symmetric: bool = True,
-    settlement_ratio: float = 0.01,
+    settlement_ratio: float = 0.02,
     speed: float = 0.01,
     ramp_crossings: float = 10.0,
     volumetric: str = "patch",
