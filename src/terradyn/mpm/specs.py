@@ -176,9 +176,10 @@ class Resolution(_Spec):
         (terradyn.mpm.runs.INTRUSION_CELLS_ACROSS, terradyn.mpm.wheel_runs.WHEEL_CELLS_ACROSS).
     particles_per_cell : material points per cell along each axis (1-4).
     cfl : time step as a fraction of the cell crossing time of the fastest wave (<= 0.5). A smaller
-        step is not more accurate: each step's particle-grid transfer dissipates, so at coarse cells a
-        moving body's force grows as cfl falls (60 mm plate, 6 cells across, 0.05 m/s: +6 % at 0.15,
-        +26 % at 0.075; 12 across: +0.9 % at 0.15; docs/mpm.md "Time step and loading speed").
+        step is not more accurate: at coarse cells a moving body's force grows as cfl falls, most
+        likely because each step's particle-grid transfer dissipates (60 mm plate, 6 cells across,
+        0.05 m/s: +6 % at 0.15, +26 % at 0.075; 12 across: +0.9 % at 0.15; docs/mpm.md "Time step
+        and loading speed").
     contact : grid contact scheme (:class:`~terradyn.mpm.bodies.ContactScheme`), ``"two-field"``
         (bodies need no thickness) or the legacy ``"cover"``.
     min_cells_across : the fewest cells accepted across the body's diameter (None: 6 for intrusions,
