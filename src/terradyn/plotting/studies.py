@@ -257,10 +257,7 @@ def plot_fe_footing(result: Any, phi_deg: float, reference: dict[str, Any] | Non
         scale = 2.0 / (run.unit_weight_N_m3 * run.width_m)
         ax.plot(s / run.width_m, q * scale, color=f"C{k}", lw=1.0,
                 label=rf"{n} elements per half-width: $N_\gamma$ = {run.N_gamma:.3g}")  # fmt: skip
-    est = result.estimate
-    if est.extrapolated is not None:
-        label = rf"Richardson (order {est.order:.2g}): $N_\gamma$ = {est.extrapolated:.3g}"
-        ax.axhline(est.extrapolated, color="k", ls="--", lw=1.0, label=label)
+    _richardson_line(ax, result.estimate)
     _reference_lines(
         ax, reference, ("N_gamma_davis_estimate", "N_gamma_associated", "N_gamma_upper_bound_cone")
     )
@@ -268,6 +265,12 @@ def plot_fe_footing(result: Any, phi_deg: float, reference: dict[str, Any] | Non
     _bearing_axes(ax)
     ax.set_title(rf"FE strip footing, cone of $\phi$ = {phi_deg:g} deg, {first.base} base, {first.flow} flow")
     return fig
+
+
+def _richardson_line(ax: Any, est: Any) -> None:
+    if est.extrapolated is not None:
+        label = rf"Richardson (order {est.order:.2g}): $N_\gamma$ = {est.extrapolated:.3g}"
+        ax.axhline(est.extrapolated, color="k", ls="--", lw=1.0, label=label)
 
 
 _REFERENCE_LINES = {
@@ -308,10 +311,7 @@ def plot_node_footing(result: Any) -> Any:
         scale = 2.0 / (run.unit_weight_N_m3 * run.width_m)
         label = rf"B/{run.width_m / run.cell_size_m:.0f}: $N_\gamma$ = {run.N_gamma:.3g}"
         ax.plot(s / run.width_m, q * scale, color=f"C{k}", lw=1.0, label=label)
-    est = result.estimate
-    if est.extrapolated is not None:
-        label = rf"Richardson (order {est.order:.2g}): $N_\gamma$ = {est.extrapolated:.3g}"
-        ax.axhline(est.extrapolated, color="k", ls="--", lw=1.0, label=label)
+    _richardson_line(ax, result.estimate)
     ref = result.reference.get("N_gamma_reference")
     if ref:
         band = result.reference.get("N_gamma_fe_band") or 0.0
