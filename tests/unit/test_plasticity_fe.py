@@ -61,7 +61,7 @@ def _mesh(n: int = 4) -> tuple[np.ndarray, np.ndarray]:
 
 def test_a_bed_under_gravity_alone_stays_at_rest_and_elastic():
     xs, zs = _mesh()
-    rows, _ = fe._run(xs, zs, RHO, 9.81, G, LAM, MU, False, 1 - MU, 5, False, 0.0, 200, 4000, 500, 0.8)
+    rows, _ = fe._run(xs, zs, RHO, 9.81, G, LAM, MU, False, 1 - MU, 5, False, 0.0, 200, 4000, 0, 500, 0.8)
     assert np.all(rows[:, 2] == 0.0)  # no Gauss point at yield
     assert np.max(np.abs(rows[:, 1])) < 1e-6  # [N/m]: no load on the (motionless) footing
 
@@ -95,6 +95,27 @@ def test_isochoric_flow_carries_less_than_associated_and_refinement_lowers_both(
     assert runs["isochoric", 4] > runs["isochoric", 8]
 
 
+def test_a_slow_push_reads_the_same_at_either_damping_and_holds_its_load():
+    """The isochoric reading depends on the loading rate: pushed over 100 wave crossings the two
+    dampings differ by 10 % and the footing, held still afterwards, loses 5-10 % of its load; pushed
+    8 times slower they agree within 1 % and the held load stays within 1 % of the pushing one (at 5
+    elements per half-width: 17.36 / 15.69 pushing and 15.77 / 14.37 held at 100 crossings, 16.54 /
+    16.51 and 16.45 / 16.43 at 800)."""
+    runs = {
+        (d, c): fe.fe_strip_footing(MU, elements_per_half_width=5, damping=d, crossings=c, hold_crossings=50)
+        for d in (0.8, 0.5)
+        for c in (100.0, 800.0)
+    }
+    fast, slow = (runs[0.8, c].N_gamma / runs[0.5, c].N_gamma - 1.0 for c in (100.0, 800.0))
+    assert fast > 0.05
+    assert abs(slow) < 0.01
+    for d in (0.8, 0.5):
+        assert runs[d, 100.0].N_gamma_held < 0.95 * runs[d, 100.0].N_gamma
+        assert runs[d, 800.0].N_gamma_held == pytest.approx(runs[d, 800.0].N_gamma, rel=0.01)
+        assert runs[d, 800.0].record()["N_gamma_held"] == runs[d, 800.0].N_gamma_held
+    assert "N_gamma_held" not in fe.fe_strip_footing(MU, elements_per_half_width=2).record()
+
+
 @pytest.mark.slow
 def test_the_associated_fe_footing_extrapolates_to_the_characteristics_value():
     """Richardson over 5 / 10 / 20 elements per half-width recovers the exact associated N_gamma of
@@ -115,6 +136,8 @@ def test_the_associated_fe_footing_extrapolates_to_the_characteristics_value():
         ({"poisson_ratio": 0.5}, "poisson_ratio"),
         ({"damping": 1.0}, "damping"),
         ({"fine_widths": (0.2, 1.0)}, "fine_widths"),
+        ({"hold_crossings": -1.0}, "hold_crossings"),
+        ({"hold_crossings": float("nan")}, "hold_crossings"),
     ],
 )
 def test_bad_input_names_the_field(kwargs, field):

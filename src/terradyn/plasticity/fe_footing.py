@@ -72,10 +72,10 @@ def _cone_return(sxx, szz, sxz, syy, g_mod, k_mod, mu, associated):
 
 @njit(cache=True, fastmath=True)
 def _run(xs, zs, rho, gravity, g_mod, lam, mu, associated, k0, n_foot, rough, rate, n_settle, n_push,
-         record_every, damping):  # fmt: skip
+         n_hold, record_every, damping):  # fmt: skip
     """Relax, then push the footing on the rectilinear mesh of node lines ``xs`` (from the symmetry
-    line) and ``zs`` (up to the surface z = 0); returns rows (settlement [m], pressure x B / 2 [N/m],
-    fraction of Gauss points at yield).
+    line) and ``zs`` (up to the surface z = 0), then hold it still for ``n_hold`` steps; returns rows
+    (settlement [m], pressure x B / 2 [N/m], fraction of Gauss points at yield).
 
     Inertia uses a density scaled per element to the smallest element's time step (the result is
     static, so only the unit weight must be real); ``dt`` is half the smallest element's P-wave transit.
@@ -121,7 +121,7 @@ def _run(xs, zs, rho, gravity, g_mod, lam, mu, associated, k0, n_foot, rough, ra
             for c in range(4):
                 inertia[i + di[c], j + dj[c]] += 0.25 * scaled * a * b
                 weight[i + di[c], j + dj[c]] += 0.25 * rho * gravity * a * b
-    n_rec = n_push // record_every + 1
+    n_rec = (n_push + n_hold) // record_every + 1
     out = np.zeros((n_rec, 3))
     rec = 0
     settlement = 0.0
@@ -131,8 +131,9 @@ def _run(xs, zs, rho, gravity, g_mod, lam, mu, associated, k0, n_foot, rough, ra
     lzz = np.empty(4)
     gx = np.empty((4, 4))
     gz = np.empty((4, 4))
-    for step in range(n_settle + n_push):
+    for step in range(n_settle + n_push + n_hold):
         pushing = step >= n_settle
+        held = step >= n_settle + n_push
         force[:, :, :] = 0.0
         n_plastic = 0
         for i in range(nx):
@@ -210,10 +211,11 @@ def _run(xs, zs, rho, gravity, g_mod, lam, mu, associated, k0, n_foot, rough, ra
             vel[i, 0, 1] = 0.0
         if pushing:
             for i in range(n_foot):
-                vel[i, nz, 1] = -rate
+                vel[i, nz, 1] = 0.0 if held else -rate
                 if rough:
                     vel[i, nz, 0] = 0.0
-            settlement += rate * dt
+            if not held:
+                settlement += rate * dt
             k = step - n_settle
             if k % record_every == 0:
                 out[rec, 0] = settlement
@@ -258,6 +260,9 @@ class FEFooting:
     plastic_fraction: float
     steps: int
     elements: int
+    #: 2 q / (gamma B) while held after the push (``hold_crossings``), and its last-quarter mean
+    N_gamma_held: float | None = None
+    held_curve: np.ndarray | None = None
 
     def record(self) -> dict[str, Any]:
         """JSON-ready summary (no curve)."""
@@ -275,6 +280,7 @@ class FEFooting:
             "plastic_fraction_end": self.plastic_fraction,
             "steps": self.steps,
             "elements": self.elements,
+            **({} if self.N_gamma_held is None else {"N_gamma_held": self.N_gamma_held}),
         }
 
 
@@ -295,6 +301,7 @@ def fe_strip_footing(
     settlement_ratio: float = 0.02,
     crossings: float = 200.0,
     damping: float = 0.8,
+    hold_crossings: float = 0.0,
 ) -> FEFooting:
     """Collapse pressure of a rigid strip footing of ``width`` B [m] on the cone ``sqrt(J2) = mu p``.
 
@@ -305,7 +312,8 @@ def fe_strip_footing(
     (up to B / 4) to the half domain ``domain_widths`` [B]. Elasticity ``youngs_modulus`` [Pa],
     ``poisson_ratio``; unit weight ``density`` [kg/m^3] x ``gravity`` [m/s^2]. The footing is pushed
     to ``settlement_ratio`` x B over ``crossings`` times the steps a wave needs to cross the mesh
-    (2 per element along x plus z), after 20 crossings of relaxation under gravity.
+    (2 per element along x plus z), after 20 crossings of relaxation under gravity; then held still
+    for ``hold_crossings`` crossings (``N_gamma_held``: the mean over the hold's last quarter).
     """
     mu = float(friction_coefficient)
     if not (math.isfinite(mu) and 0.05 <= mu <= 5.0):
@@ -332,6 +340,8 @@ def fe_strip_footing(
                         ("crossings", crossings)):  # fmt: skip
         if not (math.isfinite(value) and value > 0.0):
             raise InputError(name, value, "a positive number")
+    if not (math.isfinite(hold_crossings) and 0.0 <= hold_crossings <= 1e4):
+        raise InputError("hold_crossings", hold_crossings, "a number in [0, 1e4]")
     if not (0.0 <= damping < 1.0):
         raise InputError("damping", damping, "a number in [0, 1)")
     h = 0.5 * width / elements_per_half_width
@@ -342,16 +352,20 @@ def fe_strip_footing(
     n_cross = 2 * (len(xs) + len(zs))
     n_push = int(crossings * n_cross)
     n_settle = 20 * n_cross
+    n_hold = int(hold_crossings * n_cross)
     dt = 0.5 * h / math.sqrt((lam + 2.0 * g_mod) / density)
     rate = settlement_ratio * width / (n_push * dt)
     n_foot = elements_per_half_width + 1
     record_every = max(1, n_push // 400)
     rows, dt_run = _run(xs, zs, density, gravity, g_mod, lam, mu, flow == "associated", 1.0 - mu, n_foot,
-                        base == "rough", rate, n_settle, n_push, record_every, damping)  # fmt: skip
+                        base == "rough", rate, n_settle, n_push, n_hold, record_every, damping)  # fmt: skip
     if abs(dt_run - dt) > 1e-9 * dt:  # the run's step is the smallest element's, which is h
         raise RuntimeError("fe_strip_footing: time step mismatch")
     gamma = density * gravity
-    q = rows[:, 1] / (0.5 * width)
+    n_push_rows = -(-n_push // record_every)  # rows recorded while pushing; the rest are the hold
+    q_all = rows[:, 1] / (0.5 * width)
+    held = 2.0 * q_all[n_push_rows:] / (gamma * width)
+    rows, q = rows[:n_push_rows], q_all[:n_push_rows]
     n = 2.0 * q / (gamma * width)
     tail = n[int(0.75 * len(n)) :]
     return FEFooting(
@@ -367,7 +381,9 @@ def fe_strip_footing(
         N_gamma_spread=float(np.max(tail) - np.min(tail)),
         curve=np.column_stack([rows[:, 0], q]),
         plastic_fraction=float(rows[-1, 2]),
-        steps=n_settle + n_push,
+        steps=n_settle + n_push + n_hold,
+        N_gamma_held=float(np.mean(held[int(0.75 * len(held)) :])) if len(held) else None,
+        held_curve=held,
         elements=(len(xs) - 1) * (len(zs) - 1),
     )
 
