@@ -70,8 +70,13 @@ class NodeFooting:
     particles: int
     steps: int
     wall_s: float
+    #: 2 q / (gamma B) while the footing is held still after the push (``hold_time``): the mean over
+    #: the hold's last quarter, and (time since the push ended [s], pressure [Pa]) per recorded row
+    N_gamma_held: float | None = None
+    held_curve: tuple[np.ndarray, np.ndarray] | None = None
 
     def record(self) -> dict[str, Any]:
+        held = {} if self.N_gamma_held is None else {"N_gamma_held": self.N_gamma_held}
         return {
             "friction_angle_deg": self.friction_angle_deg,
             "base": self.base,
@@ -89,6 +94,7 @@ class NodeFooting:
             "particles": self.particles,
             "steps": self.steps,
             "wall_s": self.wall_s,
+            **held,
         }
 
 
@@ -109,6 +115,7 @@ def node_strip_footing(
     cfl: float = 0.3,
     follow: bool = True,
     base_rows: int = 2,
+    hold_time: float = 0.0,
     progress: Callable[[float, float], None] | None = None,
 ) -> NodeFooting:
     """N_gamma of a rigid strip footing of ``width`` B [m] whose base is the grid nodes under it.
@@ -124,7 +131,8 @@ def node_strip_footing(
     docs/mpm.md). ``follow`` moves the grid down with the footing (else the grid stays and the
     footing nodes are the surface node line and the ``base_rows - 1`` lines above it).
     ``volumetric`` ``"point"`` or ``"patch"`` and ``particles_per_cell`` as in
-    :class:`terradyn.mpm.specs.Resolution`. ``progress(done, total)`` gets the steps done.
+    :class:`terradyn.mpm.specs.Resolution`. ``hold_time`` [s] then holds the footing still
+    (``N_gamma_held``, ``held_curve``). ``progress(done, total)`` gets the steps done.
     """
     from .. import materials
     from ..mpm import _footing_kernels as FK
@@ -153,6 +161,7 @@ def node_strip_footing(
     ratio = check_range("settlement_ratio", settlement_ratio, 1e-3, 0.05)
     check_positive("speed", speed)
     check_range("ramp_crossings", ramp_crossings, 0.0, 1e3)
+    check_range("hold_time", hold_time, 0.0, 10.0, unit="s")
     mat = materials.get(material) if isinstance(material, str) else material
     if mat.continuum is None or mat.bulk_density is None:
         raise InputError("material", mat.name, "a medium with a [continuum] table and a bulk density")
@@ -193,7 +202,8 @@ def node_strip_footing(
             "the ramp must end before the reading",
         )
     n_push = ramp_steps + math.ceil((settlement - ramp_travel) / (speed * dt))
-    total = n_settle + n_push
+    n_hold = round(hold_time / dt)
+    total = n_settle + n_push + n_hold
     record_every = max(1, n_push // 400)
 
     buf = K.make_buffer(nx, nz, len(state.pos))
@@ -236,12 +246,22 @@ def node_strip_footing(
         s += float(-np.sum(f[:, 2]) * dt)
         rows.append((s, float(np.mean(f[:, 1]))))
         k += n
+    held_rows = []
+    k = 0
+    while k < n_hold:  # the footing nodes at rest (speed 0), the grid with them
+        n = min(record_every, n_hold - k)
+        f = chunk(n, n_push + k, 0.0, 0.0, s)
+        k += n
+        held_rows.append((k * dt, float(np.mean(f[:, 1]))))
     wall = time.perf_counter() - t0
     arr = np.array(rows)
     loaded = (0.5 if symmetric else 1.0) * b
     q = arr[:, 1] / loaded
     n_gamma = 2.0 * q / (gamma * b)
     tail = n_gamma[arr[:, 0] >= 0.75 * settlement]
+    held_arr = np.array(held_rows).reshape(-1, 2)
+    held_q = held_arr[:, 1] / loaded
+    held_n = 2.0 * held_q / (gamma * b)
     return NodeFooting(
         friction_angle_deg=phi_deg,
         base=base,
@@ -260,6 +280,8 @@ def node_strip_footing(
         particles=len(state.pos),
         steps=total,
         wall_s=wall,
+        N_gamma_held=float(np.mean(held_n[int(0.75 * len(held_n)) :])) if len(held_n) else None,
+        held_curve=(held_arr[:, 0], held_q) if len(held_n) else None,
     )
 
 
