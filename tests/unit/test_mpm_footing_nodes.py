@@ -68,9 +68,11 @@ def test_convergence_refuses_bad_resolutions(cells):
 def test_the_node_footing_command_prints_every_resolution_and_the_reference(run_cli, tmp_path):
     plot = tmp_path / "nodes.png"
     code, out, err = run_cli("mpm", "verify", "node-footing", "--phi", "34", "--cells", "4,6,8",
-                             "--domain", "2,1", "--plot", str(plot), "--format", "json")  # fmt: skip
+                             "--domain", "2,1", "--hold-time", "0.01", "--plot", str(plot),
+                             "--format", "json")  # fmt: skip
     assert code == 0, err
     rec = json.loads(out)
+    assert all(r["N_gamma_held"] > 0 for r in rec["runs"])
     assert rec["base"] == "smooth" and rec["phi_deg"] == 34.0
     assert [r["cells_per_width"] for r in rec["runs"]] == pytest.approx([4, 6, 8])
     assert rec["N_gamma_finest"] == rec["runs"][-1]["N_gamma"]
@@ -95,6 +97,7 @@ def test_the_node_footing_command_prints_every_resolution_and_the_reference(run_
         (("--phi", "34", "--speed", "5"), "--speed"),
         (("--phi", "34", "--settlement-ratio", "0.5"), "--settlement-ratio"),
         (("--phi", "34", "--volumetric", "cell"), "--volumetric"),
+        (("--phi", "34", "--hold-time", "-1"), "--hold-time"),
     ],
 )
 def test_the_node_footing_command_names_a_bad_flag(run_cli, args, flag):

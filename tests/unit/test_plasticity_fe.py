@@ -155,13 +155,14 @@ def test_the_convergence_needs_three_meshes():
 def test_the_fe_footing_command_prints_every_mesh_and_the_estimate(run_cli, tmp_path):
     plot = tmp_path / "fe.png"
     code, out, err = run_cli("mpm", "verify", "fe-footing", "--phi", "34", "--elements", "3,4,5",
-                             "--plot", str(plot), "--format", "json")  # fmt: skip
+                             "--hold-crossings", "5", "--plot", str(plot), "--format", "json")  # fmt: skip
     assert code == 0, err
     import json
 
     rec = json.loads(out)
     assert rec["flow"] == "isochoric" and rec["base"] == "smooth"
     assert [r["elements_per_half_width"] for r in rec["runs"]] == [3, 4, 5]
+    assert all(r["N_gamma_held"] > 0 for r in rec["runs"])
     assert rec["N_gamma_finest"] == rec["runs"][-1]["N_gamma"]
     assert {"observed_order", "N_gamma_extrapolated", "error_band_of_finest", "note"} <= set(rec)
     assert plot.stat().st_size > 10_000
@@ -177,6 +178,7 @@ def test_the_fe_footing_command_prints_every_mesh_and_the_estimate(run_cli, tmp_
         (("--phi", "60"), "--phi"),
         (("--phi", "34", "--damping", "1"), "--damping"),
         (("--phi", "34", "--crossings", "0"), "--crossings"),
+        (("--phi", "34", "--hold-crossings", "-1"), "--hold-crossings"),
         (("--phi", "34", "--elements", "3,4,500"), "--elements"),  # refused before any mesh runs
     ],
 )

@@ -95,6 +95,9 @@ def verify_fe_footing(
     crossings: float = typer.Option(
         200.0, "--crossings", help="Push length in wave crossings of the mesh (more = slower loading)."
     ),
+    hold_crossings: float = typer.Option(
+        0.0, "--hold-crossings", help="Then hold the footing still this many crossings (N_gamma_held)."
+    ),
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = typer.Option(
@@ -117,7 +120,7 @@ def verify_fe_footing(
         res = fe_n_gamma_convergence(
             math.sin(math.radians(phi_deg)), flow=flow, base=base, elements=meshes,
             progress=lambda done, total: bar(done / total, done / total), damping=damping,
-            crossings=crossings,
+            crossings=crossings, hold_crossings=hold_crossings,
         )  # fmt: skip
     if plot_path is not None:
         from ..plasticity.references import strip_footing_reference
@@ -143,6 +146,9 @@ def verify_node_footing(
     speed: float = typer.Option(0.01, "--speed", help="Footing speed after the start-up ramp [m/s]."),
     settlement_ratio: float = typer.Option(
         0.02, "--settlement-ratio", help="Settlement s/B [-] of the push; the reading is its last quarter."
+    ),
+    hold_time: float = typer.Option(
+        0.0, "--hold-time", help="Then hold the footing still for this long [s] (N_gamma_held)."
     ),
     domain_widths: str = typer.Option(
         "6,3", "--domain", help="Half-width and depth of the bed, in footing widths (comma pair)."
@@ -179,7 +185,7 @@ def verify_node_footing(
             phi_deg, base, cells_per_width=resolutions, width=width, material=material, speed=speed,
             settlement_ratio=settlement_ratio, domain_widths=(domain[0], domain[1]),
             symmetric=not full_domain, volumetric=volumetric, particles_per_cell=particles_per_cell,
-            progress=lambda done, total: bar(done / total, done / total),
+            hold_time=hold_time, progress=lambda done, total: bar(done / total, done / total),
         )  # fmt: skip
     if plot_path is not None:
         from ..plotting.studies import plot_node_footing
@@ -196,6 +202,7 @@ _FE_COLUMNS = (
     "N_gamma",
     "N_gamma_peak",
     "N_gamma_spread",
+    "N_gamma_held",
     "wall_s",
 )
 _NODE_COLUMNS = (
@@ -203,6 +210,7 @@ _NODE_COLUMNS = (
     "cell_size_m",
     "N_gamma",
     "N_gamma_spread",
+    "N_gamma_held",
     "particles",
     "steps",
     "wall_s",
