@@ -139,3 +139,44 @@ def test_a_held_footing_keeps_its_load_only_after_a_slow_push():
     assert fast.record()["N_gamma_held"] == fast.N_gamma_held
     times, pressure = fast.held_curve
     assert times[-1] == pytest.approx(0.05, rel=0.02) and len(times) == len(pressure)
+
+
+def test_the_loading_rate_command_runs_both_models_at_every_rate(run_cli, tmp_path):
+    plot = tmp_path / "rate.png"
+    code, out, err = run_cli("mpm", "verify", "loading-rate", "--phi", "34", "--cells", "4",
+                             "--speeds", "0.01,0.0025", "--crossings", "50,100", "--dampings", "0.8",
+                             "--hold-time", "0.01", "--hold-crossings", "5", "--plot", str(plot),
+                             "--format", "json")  # fmt: skip
+    assert code == 0, err
+    rec = json.loads(out)
+    mpm = [r for r in rec["runs"] if r["model"] == "mpm"]
+    fe = [r for r in rec["runs"] if r["model"] == "fe"]
+    assert [r["speed_m_s"] for r in mpm] == [0.01, 0.0025] and len(fe) == 2
+    # a slower push lasts longer and, at these coarse cells, reads lower in both models
+    assert mpm[1]["push_time_s"] > 3 * mpm[0]["push_time_s"] and mpm[1]["N_gamma"] < mpm[0]["N_gamma"]
+    assert (
+        fe[1]["push_time_s"] == pytest.approx(2 * fe[0]["push_time_s"])
+        and fe[1]["N_gamma"] < fe[0]["N_gamma"]
+    )
+    assert all(r["N_gamma_held"] > 0 for r in rec["runs"])
+    assert rec["ratio_mpm_to_fe_slowest"] == pytest.approx(mpm[1]["N_gamma"] / fe[1]["N_gamma"])
+    assert plot.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(
+    ("args", "flag"),
+    [
+        (("--cells", "5"), "--cells"),
+        (("--speeds", "0.01,-1"), "--speeds"),
+        (("--speeds", "fast"), "--speeds"),
+        (("--crossings", "0"), "--crossings"),
+        (("--dampings", "1"), "--dampings"),
+        (("--base", "sticky"), "--base"),
+        (("--hold-time", "-1"), "--hold-time"),
+    ],
+)
+def test_the_loading_rate_command_names_a_bad_flag(run_cli, args, flag):
+    code, out, err = run_cli("mpm", "verify", "loading-rate", "--phi", "34", *args)
+    assert code == 1 and out == ""
+    assert err.startswith(f"terradyn: error: {flag} = "), err
+    assert len(err.strip().splitlines()) == 1

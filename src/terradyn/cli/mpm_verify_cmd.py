@@ -196,6 +196,56 @@ def verify_node_footing(
     emit(record, fmt, out_path, title=title, table=_convergence_table(record, title, _NODE_COLUMNS))
 
 
+@verify_app.command("loading-rate")
+def verify_loading_rate(
+    phi: float = typer.Option(..., "--phi", help="Friction angle phi [deg] (continuum mu_s = sin phi)."),
+    base: str = typer.Option("smooth", "--base", help="Footing base: rough (no slip) or smooth."),
+    cells_per_width: int = typer.Option(10, "--cells", help="Cells (and elements) across the footing width."),
+    width: float = typer.Option(0.04, "--footing-width", help="Footing width B [m]."),
+    speeds: str = typer.Option(
+        "0.01,0.0025,0.000625,0.00015625", "--speeds", help="MPM footing speeds [m/s] (comma list)."
+    ),
+    crossings: str = typer.Option(
+        "100,200,800,1600", "--crossings", help="FE push lengths in wave crossings of the mesh (comma list)."
+    ),
+    dampings: str = typer.Option("0.8,0.5", "--dampings", help="FE local dampings in [0, 1) (comma list)."),
+    hold_time: float = typer.Option(0.05, "--hold-time", help="MPM: hold the footing still this long [s]."),
+    hold_crossings: float = typer.Option(
+        50.0, "--hold-crossings", help="FE: hold the footing still this many crossings."
+    ),
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = typer.Option(
+        None, "--plot", help="Bearing factor against push duration, pushing and held (.png/.pdf/.svg/.jpg)."
+    ),
+) -> None:
+    """The MPM node footing and the FE footing (medium MS) at one cell size, each pushed at several
+    rates and then held: both materials are rate independent, so the rate-independent reading is
+    where the pushing and held loads meet (docs/mpm.md, "Loading rate")."""
+    from ..studies.mpm_footing_nodes import footing_loading_rate
+
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    phi_deg = check_finite("--phi", phi)
+    lists = {flag: parse_float_list(flag, text) for flag, text in
+             (("--speeds", speeds), ("--crossings", crossings), ("--dampings", dampings))}  # fmt: skip
+    with fraction_progress("footing loading rate", "of the runs") as bar:
+        res = footing_loading_rate(
+            phi_deg, base, cells_per_width=cells_per_width, width=width, speeds=lists["--speeds"],
+            crossings=lists["--crossings"], dampings=lists["--dampings"], hold_time=hold_time,
+            hold_crossings=hold_crossings, progress=lambda done, total: bar(done / total, done / total),
+        )  # fmt: skip
+    if plot_path is not None:
+        from ..plotting.studies import plot_loading_rate
+
+        save_figure(plot_loading_rate(res), plot_path)
+    record = res.record()
+    title = f"footing loading rate, phi = {phi_deg:g} deg, {base} base, B/{cells_per_width}"
+    emit(record, fmt, out_path, title=title, table=_convergence_table(record, title, _RATE_COLUMNS))
+
+
+_RATE_COLUMNS = ("model", "speed_m_s", "damping", "push_time_s", "N_gamma", "N_gamma_held")
+
+
 _FE_COLUMNS = (
     "elements_per_half_width",
     "element_size_m",

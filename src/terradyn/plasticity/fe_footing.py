@@ -263,6 +263,8 @@ class FEFooting:
     #: 2 q / (gamma B) while held after the push (``hold_crossings``), and its last-quarter mean
     N_gamma_held: float | None = None
     held_curve: np.ndarray | None = None
+    #: duration of the push [s] (the loading rate is settlement / push time)
+    push_time_s: float = 0.0
 
     def record(self) -> dict[str, Any]:
         """JSON-ready summary (no curve)."""
@@ -280,6 +282,7 @@ class FEFooting:
             "plastic_fraction_end": self.plastic_fraction,
             "steps": self.steps,
             "elements": self.elements,
+            "push_time_s": self.push_time_s,
             **({} if self.N_gamma_held is None else {"N_gamma_held": self.N_gamma_held}),
         }
 
@@ -384,6 +387,7 @@ def fe_strip_footing(
         steps=n_settle + n_push + n_hold,
         N_gamma_held=float(np.mean(held[int(0.75 * len(held)) :])) if len(held) else None,
         held_curve=held,
+        push_time_s=n_push * dt,
         elements=(len(xs) - 1) * (len(zs) - 1),
     )
 

@@ -331,3 +331,30 @@ def plot_node_footing(result: Any) -> Any:
         fontsize=9,
     )
     return fig
+
+
+def plot_loading_rate(study: Any) -> Any:
+    """Bearing factor against push duration (log scale) for the MPM node footing and the FE footing
+    of :func:`~terradyn.studies.mpm_footing_nodes.footing_loading_rate`: the pushing reading (filled
+    markers, solid lines) and the load after the footing is held still (open markers, dashed)."""
+    fig, axes = new_figure(1, 1, figsize=(6.4, 4.2))
+    ax = axes[0, 0]
+    series = [("MPM node footing", "C0", "o", study.mpm)]
+    series += [(f"FE, damping {d:g}", f"C{k + 1}", "s", runs) for k, (d, runs) in enumerate(study.fe)]
+    for label, color, marker, runs in series:
+        runs = sorted(runs, key=lambda r: r.push_time_s)
+        t = [r.push_time_s for r in runs]
+        ax.plot(t, [r.N_gamma for r in runs], color=color, marker=marker, lw=1.2, label=f"{label}, pushing")
+        ax.plot(t, [r.N_gamma_held for r in runs], color=color, marker=marker, mfc="none", lw=1.0, ls="--",
+                label=f"{label}, held")  # fmt: skip
+    ax.set_xscale("log")
+    ax.set_xlabel("push duration to s = 0.02 B [s]")
+    ax.set_ylabel(r"$N_\gamma$ = 2 q / ($\gamma$ B) [-]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    ax.set_title(
+        rf"Loading rate, $\phi$ = {study.friction_angle_deg:g} deg, {study.base} base, "
+        f"cells B/{study.width_m / study.cell_size_m:.0f}",
+        fontsize=9,
+    )
+    return fig

@@ -44,7 +44,14 @@ import numpy as np
 
 from ..errors import InputError, SolverError, check_length, check_positive, check_range
 
-__all__ = ["NodeFooting", "NodeFootingConvergence", "node_footing_convergence", "node_strip_footing"]
+__all__ = [
+    "LoadingRateStudy",
+    "NodeFooting",
+    "NodeFootingConvergence",
+    "footing_loading_rate",
+    "node_footing_convergence",
+    "node_strip_footing",
+]
 
 
 @dataclass(frozen=True)
@@ -74,6 +81,8 @@ class NodeFooting:
     #: the hold's last quarter, and (time since the push ended [s], pressure [Pa]) per recorded row
     N_gamma_held: float | None = None
     held_curve: tuple[np.ndarray, np.ndarray] | None = None
+    #: duration of the push, start-up ramp included [s]
+    push_time_s: float = 0.0
 
     def record(self) -> dict[str, Any]:
         held = {} if self.N_gamma_held is None else {"N_gamma_held": self.N_gamma_held}
@@ -94,6 +103,7 @@ class NodeFooting:
             "particles": self.particles,
             "steps": self.steps,
             "wall_s": self.wall_s,
+            "push_time_s": self.push_time_s,
             **held,
         }
 
@@ -282,6 +292,7 @@ def node_strip_footing(
         wall_s=wall,
         N_gamma_held=float(np.mean(held_n[int(0.75 * len(held_n)) :])) if len(held_n) else None,
         held_curve=(held_arr[:, 0], held_q) if len(held_n) else None,
+        push_time_s=n_push * dt,
     )
 
 
@@ -361,3 +372,115 @@ def _reference(run: NodeFooting) -> dict[str, Any]:
         return dict(strip_footing_reference(run.friction_angle_deg, run.base))
     except InputError:
         return {}
+
+
+@dataclass(frozen=True)
+class LoadingRateStudy:
+    """The node footing and the FE footing of the same case at one cell size, each pushed at several
+    rates and held still afterwards (:func:`footing_loading_rate`)."""
+
+    friction_angle_deg: float
+    base: str
+    width_m: float
+    cell_size_m: float
+    mpm: tuple[NodeFooting, ...]
+    #: (damping, FE runs in the order of the crossings)
+    fe: tuple[tuple[float, tuple[Any, ...]], ...]
+
+    def record(self) -> dict[str, Any]:
+        """JSON-ready: one row per run, then the slowest push of each model, pushing and held, and the
+        MPM's slowest reading over the mean of the FE's slowest ones."""
+        rows: list[dict[str, Any]] = [
+            {"model": "mpm", "speed_m_s": r.speed_m_s, "push_time_s": r.push_time_s, "N_gamma": r.N_gamma,
+             "N_gamma_held": r.N_gamma_held, "wall_s": r.wall_s}
+            for r in self.mpm
+        ]  # fmt: skip
+        for damping, runs in self.fe:
+            rows += [
+                {"model": "fe", "damping": damping, "push_time_s": r.push_time_s, "N_gamma": r.N_gamma,
+                 "N_gamma_held": r.N_gamma_held}
+                for r in runs
+            ]  # fmt: skip
+        slow_mpm = max(self.mpm, key=lambda r: r.push_time_s)
+        slow_fe = [max(runs, key=lambda r: r.push_time_s) for _, runs in self.fe]
+        fe_mean = float(np.mean([r.N_gamma for r in slow_fe]))
+        return {
+            "friction_angle_deg": self.friction_angle_deg,
+            "base": self.base,
+            "width_m": self.width_m,
+            "cell_size_m": self.cell_size_m,
+            "cells_per_width": self.width_m / self.cell_size_m,
+            "runs": rows,
+            "mpm_slowest_N_gamma": slow_mpm.N_gamma,
+            "mpm_slowest_N_gamma_held": slow_mpm.N_gamma_held,
+            "fe_slowest_N_gamma": [r.N_gamma for r in slow_fe],
+            "fe_slowest_N_gamma_held": [r.N_gamma_held for r in slow_fe],
+            "ratio_mpm_to_fe_slowest": slow_mpm.N_gamma / fe_mean,
+        }
+
+
+def footing_loading_rate(
+    friction_angle_deg: float,
+    base: str = "smooth",
+    *,
+    cells_per_width: int = 10,
+    width: float = 0.04,
+    speeds: Sequence[float] = (0.01, 0.0025, 0.000625, 0.00015625),
+    crossings: Sequence[float] = (100.0, 200.0, 800.0, 1600.0),
+    dampings: Sequence[float] = (0.8, 0.5),
+    hold_time: float = 0.05,
+    hold_crossings: float = 50.0,
+    progress: Callable[[float, float], None] | None = None,
+) -> LoadingRateStudy:
+    """How the loading rate sets the reading: the MPM node footing (:func:`node_strip_footing`, medium
+    MS, its moduli and unit weight) at each of ``speeds`` [m/s] and the FE footing
+    (:func:`terradyn.plasticity.fe_footing.fe_strip_footing`, the same cone and moduli) over each of
+    ``crossings`` wave crossings with each local damping of ``dampings``, both at the cell size
+    B / ``cells_per_width`` and both held still after the push (``hold_time`` [s], ``hold_crossings``).
+    Both materials are rate independent; a reading that moves with the rate, or a held load below the
+    pushing one, is the discretisation's. ``progress(done, total)`` after each run."""
+    from ..plasticity.fe_footing import fe_strip_footing
+
+    n = cells_per_width
+    if not (isinstance(n, int) and 4 <= n <= 400 and n % 2 == 0):
+        raise InputError("cells_per_width", n, "an even integer in [4, 400]")
+    speeds = _numbers("speeds", speeds, 0.0, math.inf, "one or more speeds > 0 [m/s]")
+    crossings = _numbers("crossings", crossings, 0.0, math.inf, "one or more numbers > 0")
+    dampings = _numbers("dampings", dampings, -1e-300, 1.0, "one or more numbers in [0, 1)")
+    b = check_length("width", width)
+    mu = math.sin(math.radians(check_range("friction_angle_deg", friction_angle_deg, 20.0, 45.0, unit="deg")))
+    total = float(len(speeds) + len(crossings) * len(dampings))
+    done = 0.0
+
+    def step() -> None:
+        nonlocal done
+        done += 1.0
+        if progress is not None:
+            progress(done, total)
+
+    mpm = []
+    for v in speeds:
+        mpm.append(node_strip_footing(friction_angle_deg, base, width=b, cell_size=b / n, speed=v,
+                                      hold_time=hold_time))  # fmt: skip
+        step()
+    fe = []
+    for d in dampings:
+        runs = []
+        for c in crossings:
+            runs.append(fe_strip_footing(mu, base=base, width=b, elements_per_half_width=n // 2, damping=d,
+                                         crossings=c, hold_crossings=hold_crossings))  # fmt: skip
+            step()
+        fe.append((float(d), tuple(runs)))
+    return LoadingRateStudy(float(friction_angle_deg), base, b, b / n, tuple(mpm), tuple(fe))
+
+
+def _numbers(name: str, values: Sequence[float], low: float, high: float, allowed: str) -> tuple[float, ...]:
+    """``values`` as floats, each finite and in (``low``, ``high``); else an InputError naming ``name``."""
+    vals = tuple(values)
+    ok = bool(vals) and all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and low < v < high
+        for v in vals
+    )
+    if not ok:
+        raise InputError(name, list(vals), allowed)
+    return tuple(float(v) for v in vals)
