@@ -448,6 +448,11 @@ def footing_loading_rate(
     speeds = _numbers("speeds", speeds, 0.0, math.inf, "one or more speeds > 0 [m/s]")
     crossings = _numbers("crossings", crossings, 0.0, math.inf, "one or more numbers > 0")
     dampings = _numbers("dampings", dampings, -1e-300, 1.0, "one or more numbers in [0, 1)")
+    # checked before the MPM runs, so a bad FE setting does not waste them
+    check_range("hold_crossings", hold_crossings, 0.0, 1e4)
+    check_range("hold_time", hold_time, 0.0, 10.0, unit="s")
+    if base not in ("smooth", "rough"):
+        raise InputError("base", base, "'smooth' or 'rough'")
     b = check_length("width", width)
     mu = math.sin(math.radians(check_range("friction_angle_deg", friction_angle_deg, 20.0, 45.0, unit="deg")))
     total = float(len(speeds) + len(crossings) * len(dampings))
