@@ -445,9 +445,9 @@ def footing_loading_rate(
     n = cells_per_width
     if not (isinstance(n, int) and 4 <= n <= 400 and n % 2 == 0):
         raise InputError("cells_per_width", n, "an even integer in [4, 400]")
-    speeds = _numbers("speeds", speeds, 0.0, math.inf, "one or more speeds > 0 [m/s]")
-    crossings = _numbers("crossings", crossings, 0.0, math.inf, "one or more numbers > 0")
-    dampings = _numbers("dampings", dampings, -1e-300, 1.0, "one or more numbers in [0, 1)")
+    speeds = _numbers("speeds", speeds, "one or more speeds > 0 [m/s]", lambda v: v > 0.0)
+    crossings = _numbers("crossings", crossings, "one or more numbers > 0", lambda v: v > 0.0)
+    dampings = _numbers("dampings", dampings, "one or more numbers in [0, 1)", lambda v: 0.0 <= v < 1.0)
     # checked before the MPM runs, so a bad FE setting does not waste them
     check_range("hold_crossings", hold_crossings, 0.0, 1e4)
     check_range("hold_time", hold_time, 0.0, 10.0, unit="s")
@@ -480,11 +480,14 @@ def footing_loading_rate(
     return LoadingRateStudy(float(friction_angle_deg), base, b, b / n, tuple(mpm), tuple(fe))
 
 
-def _numbers(name: str, values: Sequence[float], low: float, high: float, allowed: str) -> tuple[float, ...]:
-    """``values`` as floats, each finite and in (``low``, ``high``); else an InputError naming ``name``."""
+def _numbers(
+    name: str, values: Sequence[float], allowed: str, accept: Callable[[float], bool]
+) -> tuple[float, ...]:
+    """``values`` as floats, one or more, each a finite number that ``accept`` takes; else an
+    InputError naming ``name``."""
     vals = tuple(values)
     ok = bool(vals) and all(
-        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and low < v < high
+        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and accept(float(v))
         for v in vals
     )
     if not ok:
