@@ -150,6 +150,12 @@ def verify_node_footing(
     hold_time: float = typer.Option(
         0.0, "--hold-time", help="Then hold the footing still for this long [s] (N_gamma_held)."
     ),
+    flip: float = typer.Option(
+        0.0,
+        "--flip",
+        help="Particle velocity update: 0 the solver's APIC, 1 pure FLIP, between a blend; a diagnostic of "
+        "the transfer's numerical dissipation (docs/mpm.md, 'What the rate error is').",
+    ),
     domain_widths: str = typer.Option(
         "6,3", "--domain", help="Half-width and depth of the bed, in footing widths (comma pair)."
     ),
@@ -185,7 +191,7 @@ def verify_node_footing(
             phi_deg, base, cells_per_width=resolutions, width=width, material=material, speed=speed,
             settlement_ratio=settlement_ratio, domain_widths=(domain[0], domain[1]),
             symmetric=not full_domain, volumetric=volumetric, particles_per_cell=particles_per_cell,
-            hold_time=hold_time, progress=lambda done, total: bar(done / total, done / total),
+            hold_time=hold_time, flip=flip, progress=lambda done, total: bar(done / total, done / total),
         )  # fmt: skip
     if plot_path is not None:
         from ..plotting.studies import plot_node_footing

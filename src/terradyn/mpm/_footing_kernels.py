@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._common_kernels import _MASS_EPS
+from ._common_kernels import _MASS_EPS, _weights
 from ._kernels import g2p, grid_update, p2g, patch_divergence
 
 __all__: list[str] = []
@@ -56,6 +56,7 @@ def advance_footing(
     geo,
     averaged,
     forces,
+    flip=0.0,
 ):
     """Run ``n_steps`` steps (global step numbers ``step0 + k``).
 
@@ -70,7 +71,10 @@ def advance_footing(
     ``(x0 + i h, z0 - s + j h)`` with s the settlement), so the footing nodes stay on its base
     however far it goes; the floor is then the node line nearest ``floor_z`` [m] (world) and the nodes
     below it, which get the free-slip floor condition (no downward velocity), as the nodes
-    ``j <= pad`` of a still grid.
+    ``j <= pad`` of a still grid. ``flip`` in [0, 1] blends the particle velocity update: ``flip``
+    x (the particle's old velocity plus the interpolated grid velocity change) + (1 - ``flip``) x
+    the interpolated grid velocity (0: the APIC update of the solver; positions and affine matrices
+    always from the new grid velocity). Used to measure the transfer's numerical dissipation.
     """
     g_mod = material[0]
     lam = material[1]
@@ -83,6 +87,13 @@ def advance_footing(
     div_bar = np.empty(pos.shape[0] if averaged else 0)
     keys = np.empty((pos.shape[0] if averaged else 0, 3), dtype=np.int64)
     s = settled
+    use_flip = flip > 0.0
+    n_p = pos.shape[0] if use_flip else 0
+    vel_old = np.empty((n_p, 2))
+    pos_old = np.empty((n_p, 2))
+    zero_stress = np.zeros((n_p, 4))
+    buf_old = np.empty(buf.shape if use_flip else (0, 0, 0, 3))
+    grid_dv = np.zeros((grid_mass.shape[0] if use_flip else 0, grid_mass.shape[1], 2))
     for k in range(n_steps):
         step = step0 + k
         zg = z0 - s if follow else z0
@@ -90,6 +101,11 @@ def advance_footing(
         if step < ramp_steps:
             ramp = 0.5 * (1.0 - np.cos(np.pi * (step + 0.5) / ramp_steps))
         vz_foot = -speed * ramp
+        if use_flip:
+            # the grid velocity before this step's forces: momentum / mass of a force-free scatter
+            p2g(pos, vel, aff, zero_stress, mass, vol, x0, zg, h, dt, buf_old)
+            vel_old[:] = vel
+            pos_old[:] = pos
         p2g(pos, vel, aff, stress, mass, vol, x0, zg, h, dt, buf)
         grid_update(buf, grid_mass, grid_vel, dt, gravity, damping, pad, wall_kind, wall_mu)
         if follow:
@@ -119,6 +135,8 @@ def advance_footing(
                 grid_vel[i, j, 1] = vz_foot
         if averaged:
             patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, zg, h, patch, keys, div_bar)
+        if use_flip:
+            _grid_change(buf_old, grid_mass, grid_vel, grid_dv)
         g2p(
             pos,
             vel,
@@ -148,7 +166,56 @@ def advance_footing(
             loose_density,
             div_bar,
         )
+        if use_flip:
+            _flip_blend(pos_old, vel_old, vel, grid_dv, x0, zg, h, flip)
         forces[k, 0] = fx
         forces[k, 1] = fz
         forces[k, 2] = vz_foot
         s -= vz_foot * dt
+
+
+@njit(cache=True)
+def _grid_change(buf_old, grid_mass, grid_vel, grid_dv):
+    """``grid_dv`` (nx, nz, 2) [m/s]: the step's grid velocity change, ``grid_vel`` less the force-free
+    velocity of ``buf_old`` (a :func:`p2g` scatter with zero stress); zero at nodes without mass."""
+    nx = grid_mass.shape[0]
+    nz = grid_mass.shape[1]
+    for i in range(nx):
+        for j in range(nz):
+            m = 0.0
+            px = 0.0
+            pz = 0.0
+            for c in range(buf_old.shape[0]):
+                m += buf_old[c, i, j, 0]
+                px += buf_old[c, i, j, 1]
+                pz += buf_old[c, i, j, 2]
+            if m <= _MASS_EPS or grid_mass[i, j] <= _MASS_EPS:
+                grid_dv[i, j, 0] = 0.0
+                grid_dv[i, j, 1] = 0.0
+            else:
+                grid_dv[i, j, 0] = grid_vel[i, j, 0] - px / m
+                grid_dv[i, j, 1] = grid_vel[i, j, 1] - pz / m
+
+
+@njit(cache=True)
+def _flip_blend(pos_old, vel_old, vel, grid_dv, x0, z0, h, flip):
+    """Blend ``vel`` (the interpolated new grid velocity, in place) with the particle's old velocity
+    plus the interpolated grid change, weights at the positions before the step."""
+    inv_h = 1.0 / h
+    wx = np.empty(3)
+    wz = np.empty(3)
+    dwx = np.empty(3)
+    dwz = np.empty(3)
+    for p in range(pos_old.shape[0]):
+        bi, _ = _weights((pos_old[p, 0] - x0) * inv_h, wx, dwx, inv_h)
+        bj, _ = _weights((pos_old[p, 1] - z0) * inv_h, wz, dwz, inv_h)
+        dvx = 0.0
+        dvz = 0.0
+        for a in range(3):
+            for b in range(3):
+                wgt = wx[a] * wz[b]
+                dvx += wgt * grid_dv[bi + a, bj + b, 0]
+                dvz += wgt * grid_dv[bi + a, bj + b, 1]
+        vel[p, 0] = flip * (vel_old[p, 0] + dvx) + (1.0 - flip) * vel[p, 0]
+        vel[p, 1] = flip * (vel_old[p, 1] + dvz) + (1.0 - flip) * vel[p, 1]
+

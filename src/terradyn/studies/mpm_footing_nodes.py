@@ -84,6 +84,8 @@ class NodeFooting:
     held_curve: tuple[np.ndarray, np.ndarray] | None = None
     #: duration of the push, start-up ramp included [s]
     push_time_s: float = 0.0
+    #: FLIP fraction of the particle velocity update (0: the solver's APIC)
+    flip: float = 0.0
 
     def record(self) -> dict[str, Any]:
         held = {} if self.N_gamma_held is None else {"N_gamma_held": self.N_gamma_held}
@@ -97,6 +99,7 @@ class NodeFooting:
             "symmetric": self.symmetric,
             "volumetric": self.volumetric,
             "particles_per_cell": self.particles_per_cell,
+            "flip": self.flip,
             "speed_m_s": self.speed_m_s,
             "settlement_m": self.settlement_m,
             "N_gamma": self.N_gamma,
@@ -127,6 +130,7 @@ def node_strip_footing(
     follow: bool = True,
     base_rows: int = 2,
     hold_time: float = 0.0,
+    flip: float = 0.0,
     progress: Callable[[float, float], None] | None = None,
 ) -> NodeFooting:
     """N_gamma of a rigid strip footing of ``width`` B [m] whose base is the grid nodes under it.
@@ -143,7 +147,9 @@ def node_strip_footing(
     footing nodes are the surface node line and the ``base_rows - 1`` lines above it).
     ``volumetric`` ``"point"`` or ``"patch"`` and ``particles_per_cell`` as in
     :class:`terradyn.mpm.specs.Resolution`. ``hold_time`` [s] then holds the footing still
-    (``N_gamma_held``, ``held_curve``). ``progress(done, total)`` gets the steps done.
+    (``N_gamma_held``, ``held_curve``). ``flip`` in [0, 1] blends the particle velocity update from
+    the solver's APIC (0) towards FLIP (1), a diagnostic of the transfer's numerical dissipation
+    (docs/mpm.md, "What the rate error is"); positions and affine matrices stay APIC's. ``progress(done, total)`` gets the steps done.
     """
     from .. import materials
     from ..mpm import _footing_kernels as FK
@@ -173,6 +179,7 @@ def node_strip_footing(
     check_positive("speed", speed)
     check_range("ramp_crossings", ramp_crossings, 0.0, 1e3)
     check_range("hold_time", hold_time, 0.0, 10.0, unit="s")
+    flip = check_range("flip", flip, 0.0, 1.0)
     mat = materials.get(material) if isinstance(material, str) else material
     if mat.continuum is None or mat.bulk_density is None:
         raise InputError("material", mat.name, "a medium with a [continuum] table and a bulk density")
@@ -234,7 +241,7 @@ def node_strip_footing(
         f = np.zeros((n, 3))
         FK.advance_footing(n, step0, *args, damping, GRID_PAD, kinds, mus, grid.bounds, mat_arr,
                            foot_i, foot_j, base == "rough", symmetric, v, ramp_steps, settled, follow,
-                           -grid.depth, scratch, geo, volumetric == "patch", f)  # fmt: skip
+                           -grid.depth, scratch, geo, volumetric == "patch", f, flip)  # fmt: skip
         if not np.all(np.isfinite(f)):
             raise SolverError(f"the node footing went unstable (cell {h:g} m); lower cfl")
         done += n
@@ -294,6 +301,7 @@ def node_strip_footing(
         N_gamma_held=float(np.mean(held_n[int(0.75 * len(held_n)) :])) if len(held_n) else None,
         held_curve=(held_arr[:, 0], held_q) if len(held_n) else None,
         push_time_s=n_push * dt,
+        flip=flip,
     )
 
 
