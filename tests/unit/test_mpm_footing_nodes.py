@@ -1,5 +1,6 @@
 """The node-footing diagnostic (the MPM continuum under a footing that is a grid boundary condition)."""
 
+import itertools
 import json
 import math
 
@@ -151,7 +152,7 @@ def test_the_pushing_excess_is_the_apic_transfers_dissipation():
     kw = {"cell_size": 0.01, "domain_widths": (4.0, 2.0)}
     readings = [node_strip_footing(34.0, "smooth", speed=0.01, flip=f, **kw) for f in (0.0, 0.9, 0.99, 1.0)]
     values = [r.N_gamma for r in readings]
-    assert all(a > b for a, b in zip(values, values[1:], strict=False)), values
+    assert all(a > b for a, b in itertools.pairwise(values)), values
     assert readings[-1].record()["flip"] == 1.0 and readings[0].flip == 0.0
     slower = node_strip_footing(34.0, "smooth", speed=0.0025, **kw)
     assert values[-1] < slower.N_gamma < values[0]

@@ -149,7 +149,8 @@ def node_strip_footing(
     :class:`terradyn.mpm.specs.Resolution`. ``hold_time`` [s] then holds the footing still
     (``N_gamma_held``, ``held_curve``). ``flip`` in [0, 1] blends the particle velocity update from
     the solver's APIC (0) towards FLIP (1), a diagnostic of the transfer's numerical dissipation
-    (docs/mpm.md, "What the rate error is"); positions and affine matrices stay APIC's. ``progress(done, total)`` gets the steps done.
+    (docs/mpm.md, "What the rate error is"); positions and affine matrices stay APIC's.
+    ``progress(done, total)`` gets the steps done.
     """
     from .. import materials
     from ..mpm import _footing_kernels as FK
