@@ -218,4 +218,3 @@ def _flip_blend(pos_old, vel_old, vel, grid_dv, x0, z0, h, flip):
                 dvz += wgt * grid_dv[bi + a, bj + b, 1]
         vel[p, 0] = flip * (vel_old[p, 0] + dvx) + (1.0 - flip) * vel[p, 0]
         vel[p, 1] = flip * (vel_old[p, 1] + dvz) + (1.0 - flip) * vel[p, 1]
-
