@@ -52,6 +52,8 @@ WHEEL = WheelCircular(0.05, 0.05)
         (Resolution, dict(cfl=0.9), "cfl"),
         (Resolution, dict(contact="glue"), "contact"),
         (Resolution, dict(min_cells_across=1), "min_cells_across"),
+        (Resolution, dict(flip=1.5), "flip"),
+        (Resolution, dict(flip=math.nan), "flip"),
         (Outputs, dict(record_interval=-1.0), "record_interval"),
         (Outputs, dict(record_spacing=0.0), "record_spacing"),
         (Outputs, dict(record_spacing=0.01, record_interval=0.1), "record_spacing"),
@@ -255,6 +257,9 @@ SIZES = ("--cell-sizes", "0.01,0.008,0.006")
         (("converge", "wheel", *WHEEL_ARGS, *SIZES, "--packing", "loose"), "--packing"),
         (("verify", "strip-footing", "--phi", "30", "--cell-size", "-0.001"), "--cell-size"),
         (("verify", "strip-footing", "--phi", "30", "--contact", "glue"), "--contact"),
+        (("intrude", *PLATE_ARGS, "--flip", "2"), "--flip"),
+        (("wheel", *WHEEL_ARGS, "--flip", "-0.5"), "--flip"),
+        (("verify", "strip-footing", "--phi", "30", "--flip", "1.01"), "--flip"),
     ],
 )
 def test_cli_names_the_flag_of_a_bad_spec_field(run_cli, args, flag):

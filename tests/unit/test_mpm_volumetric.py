@@ -194,3 +194,31 @@ def test_a_patch_run_resumes_bit_for_bit_and_a_point_resume_of_it_is_refused(tmp
         )
     resumed = _plate_run(resolution=patch, outputs=Outputs(checkpoint_path=ckpt, resume=True))
     np.testing.assert_array_equal(resumed.to_dataframe().to_numpy(), whole.to_dataframe().to_numpy())
+
+
+def test_a_flip_run_reaches_the_kernels_resumes_bit_for_bit_and_an_apic_resume_of_it_is_refused(tmp_path):
+    """``Resolution(flip=...)`` blends the grains' velocity update towards FLIP (docs/mpm.md, "What the
+    rate error is"): it changes the force, is part of the run's fingerprint and resumes exactly."""
+    from terradyn.mpm import Outputs
+    from terradyn.mpm.solver import RunInterrupted
+
+    flip = Resolution(cell_size=0.01, flip=0.99)
+    whole = _plate_run(resolution=flip)
+    apic = _plate_run(resolution=flip.replace(flip=0.0))
+    f_flip, f_apic = whole.summary["force_z_N"], apic.summary["force_z_N"]
+    assert np.isfinite(f_flip) and f_flip > 0
+    assert f_flip != pytest.approx(f_apic, rel=1e-6)
+    ckpt = tmp_path / "run.npz"
+    calls = []
+
+    def stop(t, frac):
+        calls.append(t)
+        if len(calls) == 10:
+            raise KeyboardInterrupt
+
+    with pytest.raises(RunInterrupted):
+        _plate_run(resolution=flip, outputs=Outputs(checkpoint_path=ckpt, progress=stop))
+    with pytest.raises(InputError, match="flip"):
+        _plate_run(resolution=flip.replace(flip=0.0), outputs=Outputs(checkpoint_path=ckpt, resume=True))
+    resumed = _plate_run(resolution=flip, outputs=Outputs(checkpoint_path=ckpt, resume=True))
+    np.testing.assert_array_equal(resumed.to_dataframe().to_numpy(), whole.to_dataframe().to_numpy())

@@ -198,6 +198,7 @@ def intrude(
     cell_size: float | None = MPMOptions.cell_size,
     particles_per_cell: int = MPMOptions.ppc,
     volumetric: str = MPMOptions.volumetric,
+    flip: float = MPMOptions.flip,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
@@ -228,7 +229,8 @@ def intrude(
         raise InputError("--speed", speed, "a speed > 0 [m/s]")
     bed = Bed(packing=packing, walls=walls)
     resolution = Resolution(
-        cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact, volumetric=volumetric
+        cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact, volumetric=volumetric,
+        flip=flip,
     )
     intervals = {
         "record_interval": _interval("--record-interval", record_interval),
@@ -297,6 +299,7 @@ def drag(
     cell_size: float | None = MPMOptions.cell_size,
     particles_per_cell: int = MPMOptions.ppc,
     volumetric: str = MPMOptions.volumetric,
+    flip: float = MPMOptions.flip,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
@@ -342,6 +345,7 @@ def drag(
                 particles_per_cell=particles_per_cell,
                 contact=contact,
                 volumetric=volumetric,
+                flip=flip,
             ),
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             stroke=Stroke(averaging_window=averaging_window),
@@ -400,6 +404,7 @@ def wheel(
     cell_size: float | None = MPMOptions.cell_size,
     particles_per_cell: int = MPMOptions.ppc,
     volumetric: str = MPMOptions.volumetric,
+    flip: float = MPMOptions.flip,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     contact: str = MPMOptions.contact,
@@ -452,6 +457,7 @@ def wheel(
                 particles_per_cell=particles_per_cell,
                 contact=contact,
                 volumetric=volumetric,
+                flip=flip,
             ),
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             drive=Drive(duration=duration),
@@ -543,6 +549,7 @@ def converge_intrude(
     sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
     particles_per_cell: int = MPMOptions.ppc,
     volumetric: str = MPMOptions.volumetric,
+    flip: float = MPMOptions.flip,
     packing: str = MPMOptions.packing,
     walls: str | None = MPMOptions.walls,
     grid_phases: int = GRID_PHASES,
@@ -569,7 +576,7 @@ def converge_intrude(
             angle=math.radians(check_finite("--angle", angle)),
             speed=speed,
             bed=Bed(packing=packing, walls=walls),
-            resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric),
+            resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric, flip=flip),
             grid_phases=grid_phases,
         )
     _emit_convergence(res, fmt, out_path, plot_path, f"MPM {body.value} intrusion")
@@ -589,6 +596,7 @@ def converge_wheel_cmd(
     sizes: dict[str, Any] = {},  # the wheel size flags (MPM_WHEEL_SIZE_FLAGS)  # noqa: B006
     particles_per_cell: int = MPMOptions.ppc,
     volumetric: str = MPMOptions.volumetric,
+    flip: float = MPMOptions.flip,
     packing: str = MPMOptions.packing,
     grid_phases: int = GRID_PHASES,
     fmt: OutputFormat = FORMAT,
@@ -611,7 +619,7 @@ def converge_wheel_cmd(
             omega=omega,
             slip=slip,
             bed=Bed(packing=packing),
-            resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric),
+            resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric, flip=flip),
             drive=Drive(duration=duration),
             grid_phases=grid_phases,
         )

@@ -16,6 +16,13 @@ class MPMOptions:
         help="Velocity divergence of the volume and stress update: point (each point its own, the classical "
         "update) or patch (averaged over the points of a cell, against volumetric locking; docs/mpm.md).",
     )
+    flip = typer.Option(
+        0.0,
+        "--flip",
+        help="FLIP fraction of the grains' velocity update, 0-1 (0: APIC alone). APIC's numerical viscosity "
+        "raises forces with speed / cfl at the cell scale; 0.99 removes most of it (docs/mpm.md, 'What the "
+        "rate error is').",
+    )
     packing = typer.Option("consolidated", "--packing", help="consolidated or unconsolidated bed.")
     walls = typer.Option(None, "--walls", help="Wall condition: free-slip, no-slip or frictional.")
     contact = typer.Option(

@@ -32,6 +32,7 @@ def verify_strip_footing(
     ),
     particles_per_cell: int = MPMOptions.ppc,
     volumetric: str = MPMOptions.volumetric,
+    flip: float = MPMOptions.flip,
     contact: str = MPMOptions.contact,
     grid_phases: int = typer.Option(
         1,
@@ -65,7 +66,7 @@ def verify_strip_footing(
             phi, base, material=material, width=width, cell_size=cell_size,
             settlement_ratio=settlement_ratio, progress=bar, grid_phases=grid_phases,
             resolution=Resolution(
-                particles_per_cell=particles_per_cell, volumetric=volumetric, contact=contact
+                particles_per_cell=particles_per_cell, volumetric=volumetric, contact=contact, flip=flip
             ),
         )  # fmt: skip
     if plot_path is not None:

@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._common_kernels import _MASS_EPS, _weights
-from ._kernels import g2p, grid_update, p2g, patch_divergence
+from ._common_kernels import _MASS_EPS
+from ._kernels import flip_blend, g2p, grid_change, grid_update, p2g, patch_divergence
 
 __all__: list[str] = []
 
@@ -136,7 +136,7 @@ def advance_footing(
         if averaged:
             patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, zg, h, patch, keys, div_bar)
         if use_flip:
-            _grid_change(buf_old, grid_mass, grid_vel, grid_dv)
+            grid_change(buf_old, grid_mass, grid_vel, grid_dv)
         g2p(
             pos,
             vel,
@@ -167,54 +167,9 @@ def advance_footing(
             div_bar,
         )
         if use_flip:
-            _flip_blend(pos_old, vel_old, vel, grid_dv, x0, zg, h, flip)
+            flip_blend(pos_old, vel_old, vel, geo, grid_dv, x0, zg, h, flip)
         forces[k, 0] = fx
         forces[k, 1] = fz
         forces[k, 2] = vz_foot
         s -= vz_foot * dt
 
-
-@njit(cache=True)
-def _grid_change(buf_old, grid_mass, grid_vel, grid_dv):
-    """``grid_dv`` (nx, nz, 2) [m/s]: the step's grid velocity change, ``grid_vel`` less the force-free
-    velocity of ``buf_old`` (a :func:`p2g` scatter with zero stress); zero at nodes without mass."""
-    nx = grid_mass.shape[0]
-    nz = grid_mass.shape[1]
-    for i in range(nx):
-        for j in range(nz):
-            m = 0.0
-            px = 0.0
-            pz = 0.0
-            for c in range(buf_old.shape[0]):
-                m += buf_old[c, i, j, 0]
-                px += buf_old[c, i, j, 1]
-                pz += buf_old[c, i, j, 2]
-            if m <= _MASS_EPS or grid_mass[i, j] <= _MASS_EPS:
-                grid_dv[i, j, 0] = 0.0
-                grid_dv[i, j, 1] = 0.0
-            else:
-                grid_dv[i, j, 0] = grid_vel[i, j, 0] - px / m
-                grid_dv[i, j, 1] = grid_vel[i, j, 1] - pz / m
-
-
-@njit(cache=True)
-def _flip_blend(pos_old, vel_old, vel, grid_dv, x0, z0, h, flip):
-    """Blend ``vel`` (the interpolated new grid velocity, in place) with the particle's old velocity
-    plus the interpolated grid change, weights at the positions before the step."""
-    inv_h = 1.0 / h
-    wx = np.empty(3)
-    wz = np.empty(3)
-    dwx = np.empty(3)
-    dwz = np.empty(3)
-    for p in range(pos_old.shape[0]):
-        bi, _ = _weights((pos_old[p, 0] - x0) * inv_h, wx, dwx, inv_h)
-        bj, _ = _weights((pos_old[p, 1] - z0) * inv_h, wz, dwz, inv_h)
-        dvx = 0.0
-        dvz = 0.0
-        for a in range(3):
-            for b in range(3):
-                wgt = wx[a] * wz[b]
-                dvx += wgt * grid_dv[bi + a, bj + b, 0]
-                dvz += wgt * grid_dv[bi + a, bj + b, 1]
-        vel[p, 0] = flip * (vel_old[p, 0] + dvx) + (1.0 - flip) * vel[p, 0]
-        vel[p, 1] = flip * (vel_old[p, 1] + dvz) + (1.0 - flip) * vel[p, 1]

@@ -363,6 +363,58 @@ CONTACT_COVER = 0
 CONTACT_SIDES = 1
 
 
+@njit(cache=True, fastmath=True, parallel=True)
+def grid_change(buf_old, grid_mass, grid_vel, grid_dv):
+    """``grid_dv`` (nx, nz, 2) [m/s]: the step's grid velocity change, ``grid_vel`` less the force-free
+    velocity of ``buf_old`` (a :func:`p2g` scatter with zero stress); zero at nodes without mass."""
+    nx = grid_mass.shape[0]
+    nz = grid_mass.shape[1]
+    for i in prange(nx):
+        for j in range(nz):
+            m = 0.0
+            px = 0.0
+            pz = 0.0
+            for c in range(buf_old.shape[0]):
+                m += buf_old[c, i, j, 0]
+                px += buf_old[c, i, j, 1]
+                pz += buf_old[c, i, j, 2]
+            if m <= _MASS_EPS or grid_mass[i, j] <= _MASS_EPS:
+                grid_dv[i, j, 0] = 0.0
+                grid_dv[i, j, 1] = 0.0
+            else:
+                grid_dv[i, j, 0] = grid_vel[i, j, 0] - px / m
+                grid_dv[i, j, 1] = grid_vel[i, j, 1] - pz / m
+
+
+@njit(cache=True, fastmath=True, parallel=True)
+def flip_blend(pos_old, vel_old, vel, geo, grid_dv, x0, z0, h, flip):
+    """Blend the APIC velocity ``vel`` (the interpolated new grid velocity, in place) of each point
+    with FLIP's, its old velocity plus the interpolated grid change (weights at the positions before
+    the step): ``flip`` x FLIP + (1 - ``flip``) x APIC. APIC drops the non-affine part of the grid
+    velocity around a point every step, a numerical viscosity of order h^2 / dt; FLIP keeps it
+    (docs/mpm.md, "What the rate error is"). Points in a body's band (``geo`` with a normal) keep
+    APIC: they read two grain fields, and the change of the far one is not formed."""
+    inv_h = 1.0 / h
+    for p in prange(pos_old.shape[0]):
+        if geo[p, 0] != 0.0 or geo[p, 1] != 0.0:
+            continue
+        wx = np.empty(3)
+        wz = np.empty(3)
+        dwx = np.empty(3)
+        dwz = np.empty(3)
+        bi, _ = _weights((pos_old[p, 0] - x0) * inv_h, wx, dwx, inv_h)
+        bj, _ = _weights((pos_old[p, 1] - z0) * inv_h, wz, dwz, inv_h)
+        dvx = 0.0
+        dvz = 0.0
+        for a in range(3):
+            for b in range(3):
+                wgt = wx[a] * wz[b]
+                dvx += wgt * grid_dv[bi + a, bj + b, 0]
+                dvz += wgt * grid_dv[bi + a, bj + b, 1]
+        vel[p, 0] = flip * (vel_old[p, 0] + dvx) + (1.0 - flip) * vel[p, 0]
+        vel[p, 1] = flip * (vel_old[p, 1] + dvz) + (1.0 - flip) * vel[p, 1]
+
+
 @njit(cache=True)
 def advance(
     n_steps,
@@ -403,6 +455,7 @@ def advance(
     scratch_particles,
     near,
     averaged=False,
+    flip=0.0,
 ):
     """Run ``n_steps`` MPM steps of ``dt`` [s] with one rigid body, all compiled.
 
@@ -419,6 +472,8 @@ def advance(
     Scratch: ``scratch_grid`` (nx, nz, 14) (far-side velocity, band-node geometry, two-field sums),
     ``scratch_particles`` (N, 3) and ``near`` (N,) int64 (see :func:`body_particles`).
     ``averaged`` selects the patch-averaged velocity divergence (:func:`patch_divergence`).
+    ``flip`` in [0, 1] blends the velocity update of the points outside the body's band (``geo`` 0)
+    towards FLIP (:func:`flip_blend`); 0 (default) is APIC alone.
     """
     g_mod = material[0]
     lam = material[1]
@@ -441,11 +496,23 @@ def advance(
     keys = np.empty((pos.shape[0] if averaged else 0, 3), dtype=np.int64)
     if not sides:
         geo[:] = 0.0
+    use_flip = flip > 0.0
+    n_flip = pos.shape[0] if use_flip else 0
+    vel_old = np.empty((n_flip, 2))
+    pos_old = np.empty((n_flip, 2))
+    zero_stress = np.zeros((n_flip, 4))
+    buf_old = np.empty(buf.shape if use_flip else (0, 0, 0, 3))
+    grid_dv = np.zeros((grid_mass.shape[0] if use_flip else 0, grid_mass.shape[1], 2))
     for step in range(n_steps):
         # 1. particle -> grid (and, near the body, the two grain fields)
         if sides:
             n_near = body_particles(pos, seg, pose, reach + 2.5 * h, geo, near)
             box = body_nodes(x0, z0, h, seg, pose, reach, band, node, box)
+        if use_flip:
+            # the grid velocity before this step's forces: a force-free scatter
+            p2g(pos, vel, aff, zero_stress, mass, vol, x0, z0, h, dt, buf_old)
+            vel_old[:] = vel
+            pos_old[:] = pos
         p2g(pos, vel, aff, stress, mass, vol, x0, z0, h, dt, buf)
         if sides:
             p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0, z0, h, dt, side)
@@ -477,6 +544,8 @@ def advance(
         # 3. grid -> particle, stress update; particles kept out of the body
         if averaged:
             patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, keys, div_bar)
+        if use_flip:
+            grid_change(buf_old, grid_mass, grid_vel, grid_dv)
         g2p(
             pos,
             vel,
@@ -506,6 +575,8 @@ def advance(
             loose_density,
             div_bar,
         )
+        if use_flip:
+            flip_blend(pos_old, vel_old, vel, geo, grid_dv, x0, z0, h, flip)
         if has_body:
             if sides:
                 px, pz, pt = body_project_sides(

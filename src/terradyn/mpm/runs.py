@@ -177,6 +177,7 @@ def _run_inputs(c: _Common, body: Body, named: dict[str, Any]) -> dict[str, Any]
         "contact": c.contact.value,
         # only when not the classical update, so checkpoints of earlier releases still resume
         **({"volumetric": c.resolution.volumetric} if c.resolution.volumetric != "point" else {}),
+        **({"flip": c.resolution.flip} if c.resolution.flip else {}),
     }
 
 
@@ -377,6 +378,7 @@ def _runner(c: _Common, grid, state, dt, phases, every, reference_speed, outputs
         snapshot_every=snapshot_every,
         progress=outputs.progress,
         averaged_divergence=c.resolution.volumetric == "patch",
+        flip=c.resolution.flip,
     )
     runner.frame_every = _frame_every(outputs.frame_count, phases[-1].n_steps, record_every)
     return runner

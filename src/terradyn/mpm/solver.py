@@ -346,6 +346,7 @@ class Runner:
     frame_every: int = 0
     window: float = 0.0
     averaged_divergence: bool = False  # Resolution.volumetric == "patch"
+    flip: float = 0.0  # Resolution.flip
     step: int = 0
     rows: list[list[float]] = field(default_factory=list)
     frames: list[dict[str, np.ndarray]] = field(default_factory=list)
@@ -649,6 +650,7 @@ class Runner:
             forces,
             *self._scratch,
             self.averaged_divergence,
+            self.flip,
         )
 
     def frame(self) -> dict[str, np.ndarray]:

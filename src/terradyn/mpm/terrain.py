@@ -107,6 +107,7 @@ class MPMTerrain:
         self.bed_density = bed.density
         self.particles_per_cell = resolution.particles_per_cell
         self.volumetric = resolution.volumetric
+        self.flip = resolution.flip
         self.gravity = bed.gravity
         self.cfl = resolution.cfl
         self.max_speed = check_positive("max_speed", max_speed)
@@ -207,6 +208,7 @@ class MPMTerrain:
             has_body=False,
             reference_speed=self.max_speed,
             averaged_divergence=self.volumetric == "patch",
+            flip=self.flip,
         )
         return runner, eff, state
 
@@ -341,6 +343,7 @@ class MPMTerrain:
             "cfl": self.cfl,
             "max_speed": self.max_speed,
             **({"volumetric": self.volumetric} if self.volumetric != "point" else {}),
+            **({"flip": self.flip} if self.flip else {}),
             "derived": {"mpm_body": eff, "dt": self.dt},
         }
 

@@ -86,6 +86,7 @@ class StripFootingResult:
     final_segments: np.ndarray | None = None
     particles_per_cell: int = 2
     volumetric: str = "point"
+    flip: float = 0.0
     #: one (surface offset [cells], N_gamma intercept, (s, q) curve) per grid phase
     phases: tuple[tuple[float, float, tuple[np.ndarray, np.ndarray]], ...] = ()
 
@@ -102,6 +103,7 @@ class StripFootingResult:
             "cell_size_m": self.cell_size_m,
             "particles_per_cell": self.particles_per_cell,
             "volumetric": self.volumetric,
+            "flip": self.flip,
             "pressure_Pa": self.pressure_Pa,
             "settlement_m": self.settlement_m,
             "embedment_slope": self.embedment_slope,
@@ -323,4 +325,5 @@ def strip_footing(
         final_segments=None if getattr(res, "final_frame", None) is None else res.final_frame["segments"],
         particles_per_cell=resolution.particles_per_cell,
         volumetric=resolution.volumetric,
+        flip=resolution.flip,
     )
