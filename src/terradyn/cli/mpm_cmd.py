@@ -229,7 +229,10 @@ def intrude(
         raise InputError("--speed", speed, "a speed > 0 [m/s]")
     bed = Bed(packing=packing, walls=walls)
     resolution = Resolution(
-        cell_size=cell_size, particles_per_cell=particles_per_cell, contact=contact, volumetric=volumetric,
+        cell_size=cell_size,
+        particles_per_cell=particles_per_cell,
+        contact=contact,
+        volumetric=volumetric,
         flip=flip,
     )
     intervals = {

@@ -172,4 +172,3 @@ def advance_footing(
         forces[k, 1] = fz
         forces[k, 2] = vz_foot
         s -= vz_foot * dt
-
