@@ -165,12 +165,17 @@ def test_the_loading_rate_command_runs_both_models_at_every_rate(run_cli, tmp_pa
     code, out, err = run_cli("mpm", "verify", "loading-rate", "--phi", "34", "--cells", "4",
                              "--speeds", "0.01,0.0025", "--crossings", "50,100", "--dampings", "0.8",
                              "--hold-time", "0.01", "--hold-crossings", "5", "--plot", str(plot),
-                             "--format", "json")  # fmt: skip
+                             "--flips", "0,0.99", "--format", "json")  # fmt: skip
     assert code == 0, err
     rec = json.loads(out)
-    mpm = [r for r in rec["runs"] if r["model"] == "mpm"]
+    every = [r for r in rec["runs"] if r["model"] == "mpm"]
+    mpm = [r for r in every if r["flip"] == 0.0]
     fe = [r for r in rec["runs"] if r["model"] == "fe"]
     assert [r["speed_m_s"] for r in mpm] == [0.01, 0.0025] and len(fe) == 2
+    # each FLIP fraction runs every speed; at 0.01 m/s the FLIP blend reads below APIC
+    flipped = [r for r in every if r["flip"] == 0.99]
+    assert [r["speed_m_s"] for r in flipped] == [0.01, 0.0025]
+    assert flipped[0]["N_gamma"] < mpm[0]["N_gamma"]
     # a slower push lasts longer and, at these coarse cells, reads lower in both models
     assert mpm[1]["push_time_s"] > 3 * mpm[0]["push_time_s"] and mpm[1]["N_gamma"] < mpm[0]["N_gamma"]
     assert (
@@ -192,6 +197,7 @@ def test_the_loading_rate_command_runs_both_models_at_every_rate(run_cli, tmp_pa
         (("--dampings", "1"), "--dampings"),
         (("--base", "sticky"), "--base"),
         (("--hold-time", "-1"), "--hold-time"),
+        (("--flips", "0,1.5"), "--flips"),
     ],
 )
 def test_the_loading_rate_command_names_a_bad_flag(run_cli, args, flag):

@@ -220,6 +220,11 @@ def verify_loading_rate(
     hold_crossings: float = typer.Option(
         50.0, "--hold-crossings", help="FE: hold the footing still this many crossings."
     ),
+    flips: str = typer.Option(
+        "0",
+        "--flips",
+        help="MPM: FLIP fractions of the velocity update, each run at every speed (comma list; 0 = APIC).",
+    ),
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
     plot: str | None = typer.Option(
@@ -234,12 +239,14 @@ def verify_loading_rate(
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     phi_deg = check_finite("--phi", phi)
     lists = {flag: parse_float_list(flag, text) for flag, text in
-             (("--speeds", speeds), ("--crossings", crossings), ("--dampings", dampings))}  # fmt: skip
+             (("--speeds", speeds), ("--crossings", crossings), ("--dampings", dampings),
+              ("--flips", flips))}  # fmt: skip
     with fraction_progress("footing loading rate", "of the runs") as bar:
         res = footing_loading_rate(
             phi_deg, base, cells_per_width=cells_per_width, width=width, speeds=lists["--speeds"],
             crossings=lists["--crossings"], dampings=lists["--dampings"], hold_time=hold_time,
-            hold_crossings=hold_crossings, progress=lambda done, total: bar(done / total, done / total),
+            hold_crossings=hold_crossings, flips=lists["--flips"],
+            progress=lambda done, total: bar(done / total, done / total),
         )  # fmt: skip
     if plot_path is not None:
         from ..plotting.studies import plot_loading_rate
@@ -250,7 +257,7 @@ def verify_loading_rate(
     emit(record, fmt, out_path, title=title, table=_convergence_table(record, title, _RATE_COLUMNS))
 
 
-_RATE_COLUMNS = ("model", "speed_m_s", "damping", "push_time_s", "N_gamma", "N_gamma_held")
+_RATE_COLUMNS = ("model", "speed_m_s", "flip", "damping", "push_time_s", "N_gamma", "N_gamma_held")
 
 
 _FE_COLUMNS = (

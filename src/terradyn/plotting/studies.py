@@ -339,8 +339,19 @@ def plot_loading_rate(study: Any) -> Any:
     markers, solid lines) and the load after the footing is held still (open markers, dashed)."""
     fig, axes = new_figure(1, 1, figsize=(6.4, 4.2))
     ax = axes[0, 0]
-    series = [("MPM node footing", "C0", "o", study.mpm)]
-    series += [(f"FE, damping {d:g}", f"C{k + 1}", "s", runs) for k, (d, runs) in enumerate(study.fe)]
+    flips = list(dict.fromkeys(r.flip for r in study.mpm))
+    series = [
+        (
+            f"MPM node footing{'' if f == 0 else f', FLIP {f:g}'}",
+            f"C{k}",
+            "o",
+            [r for r in study.mpm if r.flip == f],
+        )
+        for k, f in enumerate(flips)
+    ]
+    series += [
+        (f"FE, damping {d:g}", f"C{k + len(flips)}", "s", runs) for k, (d, runs) in enumerate(study.fe)
+    ]
     for label, color, marker, runs in series:
         runs = sorted(runs, key=lambda r: r.push_time_s)
         t = [r.push_time_s for r in runs]
