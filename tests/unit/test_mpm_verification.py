@@ -58,10 +58,10 @@ def test_intercept_of_the_embedment_line_gives_n_gamma(base):
         assert rec["N_gamma_lower_bound"] == pytest.approx(4.424, abs=1e-3)
         assert rec["N_gamma_upper_bound"] == pytest.approx(7.650, abs=1e-3)
         assert rec["within_bounds"] is False
-        # against the finite-element value 7.14 +- 0.49: 11 is not within 10 %
+        # against the finite-element value 6.51 +- 0.41 (slow push): 11 is not within 10 %
         assert rec["reference_kind"] == "computed, finite elements"
-        assert rec["N_gamma_reference_band"] == pytest.approx(0.49)
-        assert rec["ratio_mpm_to_reference"] == pytest.approx(11.0 / 7.14)
+        assert rec["N_gamma_reference_band"] == pytest.approx(0.41)
+        assert rec["ratio_mpm_to_reference"] == pytest.approx(11.0 / 6.51)
         assert rec["within_10_percent_of_reference"] is False
     else:
         assert rec["N_gamma_lower_bound"] is None and rec["N_gamma_upper_bound"] == pytest.approx(14.8)

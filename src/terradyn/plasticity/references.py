@@ -205,8 +205,8 @@ _FE_RULES = {
 
 # (phi [deg], base): (N_gamma, band, the readings the rule works on, rule)
 _FE_ISOCHORIC: dict[tuple[float, str], tuple[float, float, str, str]] = {
-    (30.0, "smooth"): (7.14, 0.49, "D = 0.8: 7.853 / 7.627, D = 0.5: 6.867 / 6.645 at 20 / 40 elements",
-                       "damping mean"),
+    (30.0, "smooth"): (6.51, 0.41, "D = 0.8, 1600 crossings: 7.902 / 6.935 / 6.513 at 10 / 20 / 40 "
+                       "elements (Richardson 6.19, order 1.20)", "slow push"),
     (34.0, "smooth"): (10.74, 1.21, "D = 0.8, 1600 crossings: 13.822 / 11.749 / 10.737 at 10 / 20 / 40 "
                        "elements (Richardson 9.77, order 1.03)", "slow push"),
     (30.0, "rough"): (12.38, 0.51, "D = 0.8: 13.045 / 12.891, D = 0.5: 12.592 / 11.864 at 20 / 40 elements",

@@ -342,7 +342,7 @@ def plot_loading_rate(study: Any) -> Any:
     flips = list(dict.fromkeys(r.flip for r in study.mpm))
     series = [
         (
-            f"MPM node footing{'' if f == 0 else f', FLIP {f:g}'}",
+            f"MPM node footing, {'APIC' if f == 0 else f'FLIP {f:g}'}",
             f"C{k}",
             "o",
             [r for r in study.mpm if r.flip == f],
