@@ -3,9 +3,10 @@
 cone (:mod:`terradyn.plasticity.references`) in each of the four tabulated cases. Slow: about six
 minutes per case on one core (6 B x 3 B bed). Measured (docs/mpm.md, "Footing as a grid boundary
 condition"): 18.62 / 14.42 (34 deg smooth, FE 10.74 slow push), 26.43 / 22.39 (34 deg rough, FE 19.66
-slow push), 11.36 / 9.28 (30 deg smooth, FE 7.14), 17.27 / 14.46 (30 deg rough, FE 12.38). At B/80 the
-34 deg smooth and rough ones read 12.03 (4 B x 2 B) and 20.05, +12 % and +2 % (all at 0.01 m/s, which
-is not rate converged: docs/mpm.md, "Loading rate")."""
+slow push), 11.36 / 9.28 (30 deg smooth, FE 6.51 slow push), 17.27 / 14.46 (30 deg rough, FE 11.66 slow
+push). At B/80 the 34 deg smooth and rough ones read 12.03 (4 B x 2 B) and 20.05, +12 % and +2 % (all
+at 0.01 m/s with APIC, which is not rate converged: docs/mpm.md, "Loading rate" and "What the rate
+error is")."""
 
 from __future__ import annotations
 
