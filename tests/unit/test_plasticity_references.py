@@ -177,17 +177,23 @@ def test_the_fe_rows_follow_their_own_rule_from_the_readings_they_quote():
 
 
 @pytest.mark.slow
-def test_the_tabulated_fe_value_is_reproduced():
-    """Re-runs the slow readings at 10 and 20 elements of the 34 deg smooth row (about 10 min on one
-    core; the 40-element one takes 25 min more)."""
+@pytest.mark.parametrize(
+    ("phi_deg", "base", "meshes"),
+    [(34.0, "smooth", (10, 20)), (34.0, "rough", (10,)), (30.0, "smooth", (10,)), (30.0, "rough", (10,))],
+)
+def test_the_tabulated_fe_value_is_reproduced(phi_deg, base, meshes):
+    """Re-runs slow readings the rows quote: 10 and 20 elements of 34 deg smooth (about 10 min on one
+    core), 10 elements of the others (1-3 min each); the 40-element ones take 25-55 min each."""
     from terradyn.plasticity.fe_footing import fe_strip_footing
 
-    row = next(r for r in refs._TABLE if r["kind"] == "computed, finite elements" and r["phi_deg"] == 34.0
-               and r["base"] == "smooth")  # fmt: skip
+    row = next(r for r in refs._TABLE if r["kind"] == "computed, finite elements" and r["phi_deg"] == phi_deg
+               and r["base"] == base)  # fmt: skip
     assert row["rule"] == "slow push"
-    mu = math.sin(math.radians(34.0))
-    for n in (10, 20):
-        value = fe_strip_footing(mu, elements_per_half_width=n, damping=0.8, crossings=1600.0).N_gamma
+    mu = math.sin(math.radians(phi_deg))
+    for n in meshes:
+        value = fe_strip_footing(
+            mu, base=base, elements_per_half_width=n, damping=0.8, crossings=1600.0
+        ).N_gamma
         assert f"{value:.3f}" in row["table"], (n, value)
 
 
