@@ -168,16 +168,25 @@ def _plate_run(**kw):
     )
 
 
-def test_a_patch_run_resumes_bit_for_bit_and_a_point_resume_of_it_is_refused(tmp_path):
+@pytest.mark.parametrize(
+    ("field", "on", "off"),
+    [("volumetric", "patch", "point"), ("flip", 0.99, 0.0)],
+)
+def test_a_run_with_the_option_resumes_bit_for_bit_and_a_resume_without_it_is_refused(
+    tmp_path, field, on, off
+):
+    """``Resolution(volumetric="patch")`` and ``Resolution(flip=...)`` (the FLIP blend of the grains'
+    velocity update, docs/mpm.md "What the rate error is") each reach the kernels (the force changes),
+    are part of the run's fingerprint and resume exactly."""
     from terradyn.mpm import Outputs
     from terradyn.mpm.solver import RunInterrupted
 
-    patch = Resolution(cell_size=0.01, volumetric="patch")
-    whole = _plate_run(resolution=patch)
-    point = _plate_run(resolution=patch.replace(volumetric="point"))
-    f_patch, f_point = whole.summary["force_z_N"], point.summary["force_z_N"]
-    assert np.isfinite(f_patch) and f_patch > 0
-    assert f_patch != pytest.approx(f_point, rel=1e-6)  # the option reaches the kernels
+    with_it = Resolution(cell_size=0.01, **{field: on})
+    whole = _plate_run(resolution=with_it)
+    without = _plate_run(resolution=with_it.replace(**{field: off}))
+    f_on, f_off = whole.summary["force_z_N"], without.summary["force_z_N"]
+    assert np.isfinite(f_on) and f_on > 0
+    assert f_on != pytest.approx(f_off, rel=1e-6)  # the option reaches the kernels
     ckpt = tmp_path / "run.npz"
     calls = []
 
@@ -187,38 +196,10 @@ def test_a_patch_run_resumes_bit_for_bit_and_a_point_resume_of_it_is_refused(tmp
             raise KeyboardInterrupt
 
     with pytest.raises(RunInterrupted):
-        _plate_run(resolution=patch, outputs=Outputs(checkpoint_path=ckpt, progress=stop))
-    with pytest.raises(InputError, match="volumetric"):
+        _plate_run(resolution=with_it, outputs=Outputs(checkpoint_path=ckpt, progress=stop))
+    with pytest.raises(InputError, match=field):
         _plate_run(
-            resolution=patch.replace(volumetric="point"), outputs=Outputs(checkpoint_path=ckpt, resume=True)
+            resolution=with_it.replace(**{field: off}), outputs=Outputs(checkpoint_path=ckpt, resume=True)
         )
-    resumed = _plate_run(resolution=patch, outputs=Outputs(checkpoint_path=ckpt, resume=True))
-    np.testing.assert_array_equal(resumed.to_dataframe().to_numpy(), whole.to_dataframe().to_numpy())
-
-
-def test_a_flip_run_reaches_the_kernels_resumes_bit_for_bit_and_an_apic_resume_of_it_is_refused(tmp_path):
-    """``Resolution(flip=...)`` blends the grains' velocity update towards FLIP (docs/mpm.md, "What the
-    rate error is"): it changes the force, is part of the run's fingerprint and resumes exactly."""
-    from terradyn.mpm import Outputs
-    from terradyn.mpm.solver import RunInterrupted
-
-    flip = Resolution(cell_size=0.01, flip=0.99)
-    whole = _plate_run(resolution=flip)
-    apic = _plate_run(resolution=flip.replace(flip=0.0))
-    f_flip, f_apic = whole.summary["force_z_N"], apic.summary["force_z_N"]
-    assert np.isfinite(f_flip) and f_flip > 0
-    assert f_flip != pytest.approx(f_apic, rel=1e-6)
-    ckpt = tmp_path / "run.npz"
-    calls = []
-
-    def stop(t, frac):
-        calls.append(t)
-        if len(calls) == 10:
-            raise KeyboardInterrupt
-
-    with pytest.raises(RunInterrupted):
-        _plate_run(resolution=flip, outputs=Outputs(checkpoint_path=ckpt, progress=stop))
-    with pytest.raises(InputError, match="flip"):
-        _plate_run(resolution=flip.replace(flip=0.0), outputs=Outputs(checkpoint_path=ckpt, resume=True))
-    resumed = _plate_run(resolution=flip, outputs=Outputs(checkpoint_path=ckpt, resume=True))
+    resumed = _plate_run(resolution=with_it, outputs=Outputs(checkpoint_path=ckpt, resume=True))
     np.testing.assert_array_equal(resumed.to_dataframe().to_numpy(), whole.to_dataframe().to_numpy())

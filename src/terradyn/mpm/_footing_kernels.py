@@ -13,7 +13,7 @@ import numpy as np
 from numba import njit
 
 from ._common_kernels import _MASS_EPS
-from ._kernels import flip_blend, g2p, grid_change, grid_update, p2g, patch_divergence
+from ._kernels import flip_blend, flip_scratch, g2p, grid_change, grid_update, p2g, patch_divergence
 
 __all__: list[str] = []
 
@@ -88,12 +88,7 @@ def advance_footing(
     keys = np.empty((pos.shape[0] if averaged else 0, 3), dtype=np.int64)
     s = settled
     use_flip = flip > 0.0
-    n_p = pos.shape[0] if use_flip else 0
-    vel_old = np.empty((n_p, 2))
-    pos_old = np.empty((n_p, 2))
-    zero_stress = np.zeros((n_p, 4))
-    buf_old = np.empty(buf.shape if use_flip else (0, 0, 0, 3))
-    grid_dv = np.zeros((grid_mass.shape[0] if use_flip else 0, grid_mass.shape[1], 2))
+    vel_old, pos_old, zero_stress, buf_old, grid_dv = flip_scratch(use_flip, pos, buf, grid_mass)
     for k in range(n_steps):
         step = step0 + k
         zg = z0 - s if follow else z0

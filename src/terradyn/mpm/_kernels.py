@@ -363,6 +363,21 @@ CONTACT_COVER = 0
 CONTACT_SIDES = 1
 
 
+@njit(cache=True)
+def flip_scratch(use, pos, buf, grid_mass):
+    """Scratch of the FLIP blend (empty when ``use`` is false): the points' old velocities and
+    positions (N, 2), a zero stress (N, 4), a :func:`p2g` buffer like ``buf`` and the grid change
+    (nx, nz, 2)."""
+    n = pos.shape[0] if use else 0
+    return (
+        np.empty((n, 2)),
+        np.empty((n, 2)),
+        np.zeros((n, 4)),
+        np.empty(buf.shape if use else (0, 0, 0, 3)),
+        np.zeros((grid_mass.shape[0] if use else 0, grid_mass.shape[1], 2)),
+    )
+
+
 @njit(cache=True, fastmath=True, parallel=True)
 def grid_change(buf_old, grid_mass, grid_vel, grid_dv):
     """``grid_dv`` (nx, nz, 2) [m/s]: the step's grid velocity change, ``grid_vel`` less the force-free
@@ -497,12 +512,7 @@ def advance(
     if not sides:
         geo[:] = 0.0
     use_flip = flip > 0.0
-    n_flip = pos.shape[0] if use_flip else 0
-    vel_old = np.empty((n_flip, 2))
-    pos_old = np.empty((n_flip, 2))
-    zero_stress = np.zeros((n_flip, 4))
-    buf_old = np.empty(buf.shape if use_flip else (0, 0, 0, 3))
-    grid_dv = np.zeros((grid_mass.shape[0] if use_flip else 0, grid_mass.shape[1], 2))
+    vel_old, pos_old, zero_stress, buf_old, grid_dv = flip_scratch(use_flip, pos, buf, grid_mass)
     for step in range(n_steps):
         # 1. particle -> grid (and, near the body, the two grain fields)
         if sides:
