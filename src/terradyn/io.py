@@ -23,6 +23,7 @@ from enum import Enum
 from pathlib import Path
 from typing import Any
 
+from ._interrupts import raise_if_interrupted
 from .errors import InputError
 
 __all__ = [
@@ -231,6 +232,7 @@ def output_set() -> Iterator[OutputSet]:
     finally:
         _CURRENT.reset(token)
     try:
+        raise_if_interrupted()  # an interrupt swallowed inside the block still leaves no files
         outs.commit()
     except BaseException:
         outs.discard()

@@ -13,6 +13,8 @@ import signal
 import sys
 from typing import Any
 
+from .._interrupts import interrupt_seen, note_interrupt, reset_interrupts
+
 __all__ = ["COMMANDS", "main"]
 
 #: name -> (module under terradyn.cli, attribute, one-line help for ``terradyn --help``)
@@ -50,7 +52,13 @@ _terminated = False
 def _on_sigterm(signum: int, frame: Any) -> None:
     global _terminated
     _terminated = True
+    note_interrupt()
     raise _Terminated()
+
+
+def _on_sigint(signum: int, frame: Any) -> None:
+    note_interrupt()  # remembered even if the exception is swallowed (terradyn._interrupts)
+    raise KeyboardInterrupt
 
 
 def _root() -> Any:
@@ -253,9 +261,10 @@ def _forget_unhandled_interrupt() -> None:
 def main(argv: list[str] | None = None) -> None:
     """Run the CLI: every ending is one line on stderr (none on success) and an exit code."""
     previous = None
+    reset_interrupts()
     try:
         previous = signal.signal(signal.SIGTERM, _on_sigterm)
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.signal(signal.SIGINT, _on_sigint)
     except ValueError:  # not the main thread (embedded use): leave signals alone
         pass
     # fully vectorise every copy of a kernel this process compiles itself (terradyn.warmup explains why
@@ -267,6 +276,9 @@ def main(argv: list[str] | None = None) -> None:
     except KeyboardInterrupt as exc:
         code = _interrupted(exc)
         _forget_unhandled_interrupt()
+    else:
+        if interrupt_seen():  # delivered but swallowed on the way (terradyn._interrupts)
+            code = _interrupted(KeyboardInterrupt())
     finally:
         if previous is not None:
             try:
