@@ -260,11 +260,11 @@ def _forget_unhandled_interrupt() -> None:
 
 def main(argv: list[str] | None = None) -> None:
     """Run the CLI: every ending is one line on stderr (none on success) and an exit code."""
-    previous = None
+    previous = previous_int = None
     reset_interrupts()
     try:
         previous = signal.signal(signal.SIGTERM, _on_sigterm)
-        signal.signal(signal.SIGINT, _on_sigint)
+        previous_int = signal.signal(signal.SIGINT, _on_sigint)
     except ValueError:  # not the main thread (embedded use): leave signals alone
         pass
     # fully vectorise every copy of a kernel this process compiles itself (terradyn.warmup explains why
@@ -280,11 +280,12 @@ def main(argv: list[str] | None = None) -> None:
         if interrupt_seen():  # delivered but swallowed on the way (terradyn._interrupts)
             code = _interrupted(KeyboardInterrupt())
     finally:
-        if previous is not None:
-            try:
-                signal.signal(signal.SIGTERM, previous)
-            except (ValueError, TypeError):
-                pass
+        for sig, handler in ((signal.SIGTERM, previous), (signal.SIGINT, previous_int)):
+            if handler is not None:
+                try:
+                    signal.signal(sig, handler)
+                except (ValueError, TypeError):
+                    pass
     try:
         sys.stdout.flush()
     except BrokenPipeError:
