@@ -186,14 +186,6 @@ _FE = (
 )
 #: how a row's value and band were made from the readings its table text quotes
 _FE_RULES = {
-    "damping mean": (
-        "value: the mean of the readings at 40 elements per half-width with local damping 0.8 and 0.5 "
-        "(200 wave crossings of loading); band: the larger of half their difference and the change of "
-        "their mean from 20 to 40 elements. Loading that fast over-reads: pushed 8 times slower the "
-        "two dampings agree and the readings fall (34 deg smooth: 7 % below this rule's value at 20 "
-        "elements, 10 % at 40), docs/plasticity.md; the slow rule replaces this one where its readings "
-        "exist."
-    ),
     "slow push": (
         "value: the reading at 40 elements per half-width with local damping 0.8, pushed over 1600 wave "
         "crossings (8 times slower than the default; there the dampings agree within 0-4 % and a held "
