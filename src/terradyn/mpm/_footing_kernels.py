@@ -162,7 +162,7 @@ def advance_footing(
             div_bar,
         )
         if use_flip:
-            flip_blend(pos_old, vel_old, vel, geo, grid_dv, x0, zg, h, flip)
+            flip_blend(pos_old, vel_old, vel, grid_dv, x0, zg, h, flip)
         forces[k, 0] = fx
         forces[k, 1] = fz
         forces[k, 2] = vz_foot

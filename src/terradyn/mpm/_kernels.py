@@ -367,21 +367,22 @@ CONTACT_SIDES = 1
 def flip_scratch(use, pos, buf, grid_mass):
     """Scratch of the FLIP blend (empty when ``use`` is false): the points' old velocities and
     positions (N, 2), a zero stress (N, 4), a :func:`p2g` buffer like ``buf`` and the grid change
-    (nx, nz, 2)."""
+    (nx, nz, 3): the velocity change and a two-field flag (see :func:`mark_two_fields`)."""
     n = pos.shape[0] if use else 0
     return (
         np.empty((n, 2)),
         np.empty((n, 2)),
         np.zeros((n, 4)),
         np.empty(buf.shape if use else (0, 0, 0, 3)),
-        np.zeros((grid_mass.shape[0] if use else 0, grid_mass.shape[1], 2)),
+        np.zeros((grid_mass.shape[0] if use else 0, grid_mass.shape[1], 3)),
     )
 
 
 @njit(cache=True, fastmath=True, parallel=True)
 def grid_change(buf_old, grid_mass, grid_vel, grid_dv):
-    """``grid_dv`` (nx, nz, 2) [m/s]: the step's grid velocity change, ``grid_vel`` less the force-free
-    velocity of ``buf_old`` (a :func:`p2g` scatter with zero stress); zero at nodes without mass."""
+    """``grid_dv`` (nx, nz, 3): the step's grid velocity change [m/s], ``grid_vel`` less the
+    force-free velocity of ``buf_old`` (a :func:`p2g` scatter with zero stress), zero at nodes
+    without mass; the two-field flag (third entry) is cleared."""
     nx = grid_mass.shape[0]
     nz = grid_mass.shape[1]
     for i in prange(nx):
@@ -393,6 +394,7 @@ def grid_change(buf_old, grid_mass, grid_vel, grid_dv):
                 m += buf_old[c, i, j, 0]
                 px += buf_old[c, i, j, 1]
                 pz += buf_old[c, i, j, 2]
+            grid_dv[i, j, 2] = 0.0
             if m <= _MASS_EPS or grid_mass[i, j] <= _MASS_EPS:
                 grid_dv[i, j, 0] = 0.0
                 grid_dv[i, j, 1] = 0.0
@@ -401,18 +403,28 @@ def grid_change(buf_old, grid_mass, grid_vel, grid_dv):
                 grid_dv[i, j, 1] = grid_vel[i, j, 1] - pz / m
 
 
+@njit(cache=True)
+def mark_two_fields(node, side, box, grid_dv):
+    """Flag (``grid_dv[i, j, 2]`` = 1) the band nodes of ``box`` where a far-side grain field has
+    mass (``side[i, j, 0]``, :func:`p2g_sides`): there ``grid_vel`` is one field's velocity, not the
+    whole grid velocity the force-free scatter is, so the change formed there is not a field's."""
+    for i in range(box[0], box[1] + 1):
+        for j in range(box[2], box[3] + 1):
+            if node[i, j, 2] < 0.5 * _FAR and side[i, j, 0] > _MASS_EPS:
+                grid_dv[i, j, 2] = 1.0
+
+
 @njit(cache=True, fastmath=True, parallel=True)
-def flip_blend(pos_old, vel_old, vel, geo, grid_dv, x0, z0, h, flip):
+def flip_blend(pos_old, vel_old, vel, grid_dv, x0, z0, h, flip):
     """Blend the APIC velocity ``vel`` (the interpolated new grid velocity, in place) of each point
     with FLIP's, its old velocity plus the interpolated grid change (weights at the positions before
     the step): ``flip`` x FLIP + (1 - ``flip``) x APIC. APIC drops the non-affine part of the grid
     velocity around a point every step, a numerical viscosity of order h^2 / dt; FLIP keeps it
-    (docs/mpm.md, "What the rate error is"). Points in a body's band (``geo`` with a normal) keep
-    APIC: they read two grain fields, and the change of the far one is not formed."""
+    (docs/mpm.md, "What the rate error is"). A point whose stencil has a node flagged two-field
+    (:func:`mark_two_fields`: the far side of a thin body) keeps APIC: the change of its own field
+    is not formed there. Elsewhere, next to a body too, the change includes the contact impulse."""
     inv_h = 1.0 / h
     for p in prange(pos_old.shape[0]):
-        if geo[p, 0] != 0.0 or geo[p, 1] != 0.0:
-            continue
         wx = np.empty(3)
         wz = np.empty(3)
         dwx = np.empty(3)
@@ -421,11 +433,16 @@ def flip_blend(pos_old, vel_old, vel, geo, grid_dv, x0, z0, h, flip):
         bj, _ = _weights((pos_old[p, 1] - z0) * inv_h, wz, dwz, inv_h)
         dvx = 0.0
         dvz = 0.0
+        mixed = False
         for a in range(3):
             for b in range(3):
                 wgt = wx[a] * wz[b]
                 dvx += wgt * grid_dv[bi + a, bj + b, 0]
                 dvz += wgt * grid_dv[bi + a, bj + b, 1]
+                if grid_dv[bi + a, bj + b, 2] != 0.0:
+                    mixed = True
+        if mixed:
+            continue
         vel[p, 0] = flip * (vel_old[p, 0] + dvx) + (1.0 - flip) * vel[p, 0]
         vel[p, 1] = flip * (vel_old[p, 1] + dvz) + (1.0 - flip) * vel[p, 1]
 
@@ -487,8 +504,8 @@ def advance(
     Scratch: ``scratch_grid`` (nx, nz, 14) (far-side velocity, band-node geometry, two-field sums),
     ``scratch_particles`` (N, 3) and ``near`` (N,) int64 (see :func:`body_particles`).
     ``averaged`` selects the patch-averaged velocity divergence (:func:`patch_divergence`).
-    ``flip`` in [0, 1] blends the velocity update of the points outside the body's band (``geo`` 0)
-    towards FLIP (:func:`flip_blend`); 0 (default) is APIC alone.
+    ``flip`` in [0, 1] blends the velocity update towards FLIP (:func:`flip_blend`), except for the
+    points next to a thin body's far-side grain field; 0 (default) is APIC alone.
     """
     g_mod = material[0]
     lam = material[1]
@@ -556,6 +573,8 @@ def advance(
             patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, keys, div_bar)
         if use_flip:
             grid_change(buf_old, grid_mass, grid_vel, grid_dv)
+            if sides:
+                mark_two_fields(node, side, box, grid_dv)
         g2p(
             pos,
             vel,
@@ -586,7 +605,7 @@ def advance(
             div_bar,
         )
         if use_flip:
-            flip_blend(pos_old, vel_old, vel, geo, grid_dv, x0, z0, h, flip)
+            flip_blend(pos_old, vel_old, vel, grid_dv, x0, z0, h, flip)
         if has_body:
             if sides:
                 px, pz, pt = body_project_sides(

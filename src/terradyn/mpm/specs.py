@@ -194,7 +194,7 @@ class Resolution(_Spec):
         viscosity of order h^2 / dt whose force grows with speed / cfl and does not fade with
         refinement where the flow localises at the cell scale; 0.99 removes most of it (node strip
         footing, B/10, 0.01 m/s: 22.09 -> 16.34 against the slow-push 15.9-16.5; docs/mpm.md "What the
-        rate error is"). Points in a body's contact band keep APIC.
+        rate error is"). Points next to a thin body's far-side grain field keep APIC.
     """
 
     cell_size: float | None = None
