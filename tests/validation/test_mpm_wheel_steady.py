@@ -30,3 +30,43 @@ def test_forced_slip_pull_is_steady_and_rises_with_slip():
         sinkages.append(res.summary["sinkage_m"])
     assert pulls[0] < pulls[1] < pulls[2], pulls
     assert sinkages[0] < sinkages[1] < sinkages[2], sinkages
+
+
+def _quarters(res, radius):
+    """Mean slip of each quarter of a self-propelled drive, and the sink rate [m/s] from the second
+    quarter's mean sinkage to the last's (means, not end points: lug passings ripple the sinkage)."""
+    s = res.series
+    drive = s["phase"] == "drive"
+    t, z = s["time_s"][drive], s["sinkage_m"][drive]
+    slip = 1.0 - s["vx_m_s"][drive] / (s["omega_rad_s"][drive] * radius)
+    q = len(t) // 4
+    cut = [slice(i * q, (i + 1) * q) for i in range(4)]
+    rate = (z[cut[3]].mean() - z[cut[1]].mean()) / (t[cut[3]].mean() - t[cut[1]].mean())
+    return [float(slip[c].mean()) for c in cut], float(rate)
+
+
+@pytest.mark.slow
+def test_the_high_speed_wheel_at_mass_ratio_6_settles_with_flip_and_digs_in_with_apic():
+    """The grousered wheel of the high-speed study (poppy-cp, mass ratio 6, omega sqrt(l/g) = 0.5,
+    9 mm cells, 4 s): with the APIC transfer it keeps digging in and its slip keeps rising; with the
+    FLIP 0.99 blend (docs/mpm.md "What the rate error is") it levels off. Two runs, about 6 min each."""
+    import math
+
+    from terradyn.geometry import WheelGrousered
+    from terradyn.mpm import Drive, Resolution
+
+    wheel, poppy = WheelGrousered(0.088, 0.05, 15, 0.018, 0.004), materials.get("poppy-cp")
+    load = 6.0 * 638.0 * 0.212**2 * 0.05 * 9.81
+    omega = 0.5 * math.sqrt(9.81 / 0.212)
+    out = {}
+    for flip in (0.0, 0.99):
+        res = run_wheel(
+            wheel, poppy, load=load, omega=omega, resolution=Resolution(cell_size=0.009, flip=flip),
+            drive=Drive(duration=4.0),
+        )  # fmt: skip
+        out[flip] = _quarters(res, 0.088 + 0.018)
+    (slip_a, rate_a), (slip_f, rate_f) = out[0.0], out[0.99]
+    # APIC: slip still rising by more than 0.1 over the last three quarters, sinking at > 8 mm/s
+    assert slip_a[3] - slip_a[1] > 0.1 and rate_a > 0.008, out
+    # FLIP 0.99: slip within 0.1 over the same quarters, sinking at under half APIC's rate
+    assert abs(slip_f[3] - slip_f[1]) < 0.1 and rate_f < 0.5 * rate_a, out
