@@ -111,17 +111,23 @@ def test_signal_inside_a_chunk_waits_for_its_end(tmp_path, monkeypatch, referenc
 
     monkeypatch.setattr(Runner, "_advance", advance_then_signal)
     ckpt = tmp_path / "run.npz"
-    old = signal.signal(signum, to_interrupt) if sig == "SIGTERM" else None
+    # Python's own SIGINT handler, as in a foreground run (a job started with '&' by a shell without
+    # job control inherits SIGINT ignored, and the runner rightly leaves an ignored signal alone)
+    inherited = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
-        with pytest.raises(RunInterrupted) as info:
-            _intrude(checkpoint_path=ckpt)
+        old = signal.signal(signum, to_interrupt) if sig == "SIGTERM" else None
+        try:
+            with pytest.raises(RunInterrupted) as info:
+                _intrude(checkpoint_path=ckpt)
+        finally:
+            if old is not None:
+                signal.signal(signum, old)
+        assert info.value.step > 0
+        monkeypatch.setattr(Runner, "_advance", original)
+        _assert_same(_intrude(checkpoint_path=ckpt, resume=True), reference)
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # handlers put back
     finally:
-        if old is not None:
-            signal.signal(signum, old)
-    assert info.value.step > 0
-    monkeypatch.setattr(Runner, "_advance", original)
-    _assert_same(_intrude(checkpoint_path=ckpt, resume=True), reference)
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # handlers put back
+        signal.signal(signal.SIGINT, inherited)
 
 
 def test_interrupt_while_a_periodic_checkpoint_is_written(tmp_path, monkeypatch, reference):
