@@ -8,11 +8,13 @@ slip 0.5 still drifted by 1.7 N between the last two quarters of a 4.5 rad drive
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from terradyn import materials
-from terradyn.geometry import WheelCircular
-from terradyn.mpm import run_wheel
+from terradyn.geometry import WheelCircular, WheelGrousered
+from terradyn.mpm import Drive, Resolution, run_wheel
 
 
 @pytest.mark.slow
@@ -50,11 +52,6 @@ def test_the_high_speed_wheel_at_mass_ratio_6_settles_with_flip_and_digs_in_with
     """The grousered wheel of the high-speed study (poppy-cp, mass ratio 6, omega sqrt(l/g) = 0.5,
     9 mm cells, 4 s): with the APIC transfer it keeps digging in and its slip keeps rising; with the
     FLIP 0.99 blend (docs/mpm.md "What the rate error is") it levels off. Two runs, about 6 min each."""
-    import math
-
-    from terradyn.geometry import WheelGrousered
-    from terradyn.mpm import Drive, Resolution
-
     wheel, poppy = WheelGrousered(0.088, 0.05, 15, 0.018, 0.004), materials.get("poppy-cp")
     load = 6.0 * 638.0 * 0.212**2 * 0.05 * 9.81
     omega = 0.5 * math.sqrt(9.81 / 0.212)
