@@ -395,6 +395,12 @@ def wheel(
         0.0, "--drawbar-load", help="Horizontal load on the axle [N] (+ backwards) when x is free."
     ),
     duration: float | None = typer.Option(None, "--duration", help="Driving time [s]."),
+    spin_up: float = typer.Option(
+        0.0,
+        "--spin-up",
+        help="Time [s] over which --omega (and a forced-slip forward speed) ramps up linearly from "
+        "rest at the start of the drive; 0 = impulsive start.",
+    ),
     window: float | None = typer.Option(
         None,
         "--window",
@@ -463,7 +469,7 @@ def wheel(
                 flip=flip,
             ),
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
-            drive=Drive(duration=duration),
+            drive=Drive(duration=duration, spin_up=spin_up),
             dilatancy=_dilatancy(dilatancy),
             surface_friction=None
             if surface_friction is None

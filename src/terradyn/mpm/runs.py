@@ -189,7 +189,10 @@ def _derived_inputs(runner: Runner, eff: Body) -> dict[str, Any]:
         "dt": runner.dt,
         "record_every": runner.record_every,
         "frame_every": runner.frame_every,
-        "phases": [[p.name, p.n_steps, p.damping, p.twist, p.free] for p in runner.phases],
+        "phases": [
+            [p.name, p.n_steps, p.damping, p.twist, p.free, *([p.ramp_steps] if p.ramp_steps else [])]
+            for p in runner.phases
+        ],
         "particles": len(runner.particles),
         "pose": runner.body.pose,
         "load": runner.body.load,

@@ -50,6 +50,9 @@ CFL_LIMIT = 0.6
 PARALLEL_MIN_PARTICLES = 10_000
 #: Chunks between two timed trials of the thread count not in use (see PARALLEL_MIN_PARTICLES).
 THREAD_PROBE_EVERY = 8
+#: levels of a phase's twist ramp (:attr:`Phase.ramp_steps`): the prescribed twist rises in this many
+#: equal steps, each held for an equal share of the ramp's time steps
+RAMP_LEVELS = 100
 
 ProgressCallback = Callable[[float, float], None]
 
@@ -293,13 +296,37 @@ def stable_time_step(
 @dataclass(frozen=True, slots=True)
 class Phase:
     """A stretch of the run: ``n_steps`` with grid ``damping`` [1/s]; at its start the body gets
-    ``twist`` (vx, vz, omega) and ``free`` flags, (x, z) or (x, z, spin) (None: keep)."""
+    ``twist`` (vx, vz, omega) and ``free`` flags, (x, z) or (x, z, spin) (None: keep).
+
+    ``ramp_steps`` > 0 (with a ``twist``) ramps the prescribed (not free) components of the twist
+    from 0 to ``twist`` over the phase's first ``ramp_steps`` steps: a staircase of
+    :data:`RAMP_LEVELS` equal rises (fewer if the ramp has fewer steps), level k of L holding k/L of
+    the twist; a function of the step number alone, so the run does not depend on how it is chunked
+    for recording or resumed. The free components start from ``twist`` as without a ramp."""
 
     name: str
     n_steps: int
     damping: float = 0.0
     twist: tuple[float, float, float] | None = None
     free: tuple[bool, ...] | None = None
+    ramp_steps: int = 0
+
+    def ramp_pieces(self, first: int, n: int) -> list[tuple[int, int, float]]:
+        """Steps ``first .. first + n - 1`` of this phase (counted from its start) split where the
+        ramp level changes: ``(offset, count, fraction of the twist)``; fraction 1 after the ramp."""
+        if self.ramp_steps <= 0:
+            return [(0, n, 1.0)]
+        levels = min(RAMP_LEVELS, self.ramp_steps)
+        pieces, k = [], first
+        while k < first + n:
+            if k >= self.ramp_steps:
+                pieces.append((k - first, first + n - k, 1.0))
+                break
+            level = k * levels // self.ramp_steps + 1  # the level holding step k, 1..levels
+            end = min(first + n, -(-level * self.ramp_steps // levels))  # first step of the next level
+            pieces.append((k - first, end - k, level / levels))
+            k = end
+        return pieces
 
 
 @dataclass
@@ -500,17 +527,26 @@ class Runner:
             self.grid = grid
             self._gather()
 
-    def advance_steps(self, n: int, damping: float = 0.0) -> np.ndarray:
+    def advance_steps(
+        self, n: int, damping: float = 0.0, ramp: tuple[Phase, int] | None = None
+    ) -> np.ndarray:
         """Advance ``n`` steps (no recording) and check stability; returns the per-step body forces
-        (n, 3) per unit width [N/m, N/m, N m/m]."""
+        (n, 3) per unit width [N/m, N/m, N m/m]. ``ramp`` (phase, steps of it done) applies that
+        phase's twist ramp (:attr:`Phase.ramp_steps`)."""
         self.prepare()
         forces = np.zeros((n, 3))
         threads = numba.get_num_threads()
         use = self._thread_count(threads)
         numba.set_num_threads(use)
         start = time.perf_counter()
+        pieces = [(0, n, None)] if ramp is None else ramp[0].ramp_pieces(ramp[1], n)
         try:
-            self._advance(n, damping, forces)
+            for offset, count, fraction in pieces:
+                if fraction is not None and ramp is not None and ramp[0].twist is not None:
+                    target = np.asarray(ramp[0].twist, dtype=float)
+                    held = ~self.body.free[:3]
+                    self.body.twist[held] = fraction * target[held]
+                self._advance(count, damping, forces[offset : offset + count])
         finally:
             numba.set_num_threads(threads)
         self._time_chunk(use, (time.perf_counter() - start) / max(1, n))
@@ -570,7 +606,7 @@ class Runner:
                     self.body.free[: len(phase.free)] = phase.free
             while start <= self.step < stop:
                 n = min(self.record_every, stop - self.step)
-                self._chunk(index, phase, n)
+                self._chunk(index, phase, n, self.step - start)
             start = stop
 
     def _interrupted(self) -> RunInterrupted:
@@ -588,11 +624,13 @@ class Runner:
                 failure = f"the checkpoint could not be written ({exc.strerror or type(exc).__name__})"
         return RunInterrupted(self.step * self.dt, self.step, self.total_steps, written, failure)
 
-    def _chunk(self, index: int, phase: Phase, n: int) -> None:
-        """Advance ``n`` steps and record them; the state is consistent again when this returns."""
+    def _chunk(self, index: int, phase: Phase, n: int, done: int = 0) -> None:
+        """Advance ``n`` steps (``done`` of the phase are done) and record them; the state is
+        consistent again when this returns."""
         b = self.body
+        ramp = (phase, done) if phase.ramp_steps > 0 and done < phase.ramp_steps else None
         with _HeldInterrupts():
-            f = self.advance_steps(n, phase.damping).mean(axis=0)
+            f = self.advance_steps(n, phase.damping, ramp).mean(axis=0)
             t = self.step * self.dt
             self.rows.append([index, self.step, t, *b.pose, *b.twist, *f])
             if self.frame_every > 0 and (self.step // self.record_every) % self.frame_every == 0:

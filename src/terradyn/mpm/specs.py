@@ -284,17 +284,22 @@ class Stroke(_Spec):
 @dataclass(frozen=True, repr=False)
 class Drive(_Spec):
     """Run length of a wheel: ``sink_time`` [s] sinking under the load (None: ``3 sqrt(reach / g)``),
-    then ``duration`` [s] of driving (None: 4.5 rad of rotation, ``4.5 / |omega|``; torque-driven
-    ``20 sqrt(reach / g)``); the summary averages the last ``average_fraction`` (0.05-1) of the
-    drive."""
+    then ``duration`` [s] of driving (None: ``spin_up`` plus 4.5 rad of rotation, ``4.5 / |omega|``;
+    torque-driven ``20 sqrt(reach / g)``); the summary averages the last ``average_fraction``
+    (0.05-1) of the drive. ``spin_up`` [s] (0: the wheel starts at full spin) ramps the prescribed
+    spin, and a prescribed forward speed with it (the slip stays as set), linearly from rest over the
+    first ``spin_up`` of the drive (a rate of ``omega / spin_up``); it must end before the averaged
+    part of the drive begins."""
 
     sink_time: float | None = None
     duration: float | None = None
     average_fraction: float = 0.5
+    spin_up: float = 0.0
 
     def __post_init__(self) -> None:
         _optional_positive("sink_time", self.sink_time, allow_zero=True)
         _optional_positive("duration", self.duration)
+        _set(self, "spin_up", check_positive("spin_up", self.spin_up, allow_zero=True))
         _set(self, "average_fraction", check_range("average_fraction", self.average_fraction, 0.05, 1.0))
 
 
@@ -327,6 +332,7 @@ LEGACY: dict[str, tuple[str, str]] = {
     "sink_time": ("drive", "sink_time"),
     "duration": ("drive", "duration"),
     "average_fraction": ("drive", "average_fraction"),
+    "spin_up": ("drive", "spin_up"),
 }
 
 #: keywords that override single parameters of the material's continuum model

@@ -179,11 +179,26 @@ def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, dr
             )
     check_range("drawbar_load", drawbar_load, -10.0 * load, 10.0 * load, unit="N")
     spin = max_omega if torque_mode else abs(omega_cmd)  # the largest spin the step must resolve
+    if drive.spin_up > 0 and (torque_mode or omega_cmd == 0):
+        raise InputError(
+            "spin_up",
+            drive.spin_up,
+            "0 unless a nonzero omega is prescribed",
+            "the spin-up ramps the prescribed spin",
+        )
     duration = drive.duration
     if duration is None:
         steady = not torque_mode and spin != 0
-        duration = DRIVE_RADIANS / spin if steady else 20.0 * math.sqrt(reach / c.gravity)
+        duration = drive.spin_up + DRIVE_RADIANS / spin if steady else 20.0 * math.sqrt(reach / c.gravity)
     check_positive("duration", duration)
+    ramp_end = duration * (1.0 - drive.average_fraction)
+    if drive.spin_up > ramp_end * (1.0 + 1e-12):
+        raise InputError(
+            "spin_up",
+            drive.spin_up,
+            f"at most {ramp_end:.4g} s",
+            f"it must end before the averaged last {drive.average_fraction:g} of the {duration:.4g} s drive",
+        )
     sink_time = 3.0 * math.sqrt(reach / c.gravity) if drive.sink_time is None else drive.sink_time
     if torque_mode:
         v_forward, travel = 0.0, spin * radius * duration
@@ -213,11 +228,12 @@ def run_wheel(
     """Drive a wheel (any body) over a settled bed under a vertical ``load`` [N].
 
     The wheel first sinks under its load for ``drive.sink_time`` [s] (not spinning, vertical motion
-    free, grains damped), then spins at ``omega`` [rad/s] about +y for ``drive.duration`` [s]. With
+    free, grains damped), then spins at ``omega`` [rad/s] about +y for ``drive.duration`` [s]
+    (reached after ``drive.spin_up`` [s] of a linear ramp from rest, 0 by default). With
     ``slip`` given the forward speed is prescribed, ``vx = (1 - slip) omega r`` (r: nominal outer
     radius), and the vertical motion is free under the load; with ``slip=None`` both translations are
     free (self-propelled). ``omega = 0`` with ``slip=None`` leaves a body resting under its load. The
-    default duration is ``4.5 / |omega|`` (:data:`DRIVE_RADIANS`): starting from the pit it sank
+    default duration is ``spin_up + 4.5 / |omega|`` (:data:`DRIVE_RADIANS`): starting from the pit it sank
     into, a wheel's pull settles after about 2.25 rad of rotation (measured for a 0.13 m wheel on MS at
     slip 0.3), so the averaged last half of the drive is steady.
 
@@ -274,7 +290,7 @@ def run_wheel(
         *settle_phases,
         Phase("sink", max(1, round(m.sink_time / dt)), damping=damping, free=(False, True, False)),
         Phase("drive", max(1, round(m.duration / dt)), twist=drive_twist,
-              free=(m.slip is None, True, m.torque_mode)),
+              free=(m.slip is None, True, m.torque_mode), ramp_steps=round(specs["drive"].spin_up / dt)),
     ]  # fmt: skip
     every = _output_every(outputs, dt, None, m.duration / 200.0, m.duration / 20.0)
     named = dict(
@@ -288,6 +304,7 @@ def run_wheel(
         inertia=inertia_w * w,
         duration=m.duration,
         sink_time=m.sink_time,
+        **({"spin_up": specs["drive"].spin_up} if specs["drive"].spin_up else {}),
         settle_time=settle,
         bed_length=grid.width,
         bed_depth=grid.depth,
