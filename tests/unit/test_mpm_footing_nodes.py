@@ -4,10 +4,17 @@ import itertools
 import json
 import math
 
+import numpy as np
 import pytest
 
 from terradyn.errors import InputError
-from terradyn.studies.mpm_footing_nodes import node_footing_convergence, node_strip_footing
+from terradyn.studies.mpm_footing_nodes import (
+    PLATEAU_DRIFT,
+    PLATEAU_PEAK_RATIO,
+    node_footing_convergence,
+    node_strip_footing,
+    plateau_measures,
+)
 
 
 @pytest.mark.parametrize(
@@ -36,7 +43,39 @@ def test_a_coarse_run_loads_from_zero_to_a_plateau():
     assert abs(n[0]) < 0.1 * r.N_gamma  # the ramp starts from rest
     assert math.isfinite(r.N_gamma) and r.N_gamma > 1.0
     assert r.N_gamma_spread < 0.05 * r.N_gamma  # a plateau, not a rising or ringing curve
+    assert r.plateau and r.record()["plateau"] is True
+    assert r.N_gamma_peak_ratio == pytest.approx(1.0, abs=0.01)
     assert s[-1] == pytest.approx(r.settlement_m, rel=0.02)
+
+
+S = np.linspace(0.0, 1.0, 401)
+
+
+@pytest.mark.parametrize(
+    ("curve", "drift", "peak", "plateau"),
+    [
+        # loads to a flat plateau: no drift, the last quarter is the highest stretch
+        (np.minimum(S / 0.2, 1.0) * 10.0, 0.0, 1.0, True),
+        # noise about the plateau does not move the measures (a deterministic ringing)
+        (np.minimum(S / 0.2, 1.0) * 10.0 + np.sin(S * 800.0), 0.0, 1.0, True),
+        # still climbing: the last quarter's second half 1.6 above its first, over a mean of 18
+        (10.0 + 10.0 * S, 1.25 / 18.75, 1.0, True),
+        # climbing steeply (embedment more than the collapse load)
+        (2.0 + 30.0 * S, 3.75 / 28.25, 1.0, False),
+        # peaks at 15 and falls to 10: the reading is no collapse load (the window from S = 0.25
+        # holds 0.15 at 15 and 0.1 at 10, a mean of 13)
+        (np.where(S < 0.4, 15.0, 10.0), 0.0, 1.3, False),
+    ],
+)
+def test_plateau_measures_flag_a_curve_that_peaked_or_climbs(curve, drift, peak, plateau):
+    d, p = plateau_measures(S, curve)
+    assert d == pytest.approx(drift, abs=0.01)
+    assert p == pytest.approx(peak, abs=0.01)
+    assert (abs(d) <= PLATEAU_DRIFT and p <= PLATEAU_PEAK_RATIO) is plateau
+
+
+def test_plateau_measures_of_a_zero_reading_are_nan():
+    assert all(math.isnan(v) for v in plateau_measures(S, np.zeros_like(S)))
 
 
 def test_convergence_runs_each_resolution_and_estimates_from_the_three_finest():

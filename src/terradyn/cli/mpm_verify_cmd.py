@@ -274,6 +274,8 @@ _NODE_COLUMNS = (
     "cell_size_m",
     "N_gamma",
     "N_gamma_spread",
+    "N_gamma_peak_ratio",
+    "plateau",
     "N_gamma_held",
     "particles",
     "steps",
