@@ -1,5 +1,5 @@
-"""The MPM wheel's spin-up: a linear staircase from rest, exact at its end, independent of chunking,
-free components untouched, resumable, and clear errors."""
+"""The MPM wheel's spin-up (a linear staircase from rest, exact at its end, independent of chunking,
+free components untouched, resumable) and initial forward speed, and their errors."""
 
 from __future__ import annotations
 
@@ -79,6 +79,17 @@ def test_self_propelled_ramp_leaves_the_forward_motion_free():
     assert len(np.unique(np.round(vx, 12))) > len(vx) // 2  # vx evolves under the soil's force
 
 
+def test_a_self_propelled_wheel_can_start_the_drive_moving():
+    res = run_wheel(WHEEL, MODEL, drive=_drive(duration=0.05, initial_speed=0.05), **RUN)
+    s = res.series
+    drive = s["phase"] == "drive"
+    first = np.flatnonzero(drive)[0]
+    assert s["vx_m_s"][first - 1] == 0.0  # at rest while it sank
+    assert s["vx_m_s"][first] == pytest.approx(0.05, abs=0.01)  # one record after the start
+    rest = run_wheel(WHEEL, MODEL, drive=_drive(duration=0.05), **RUN).series
+    assert rest["x_m"][-1] - rest["x_m"][first] < s["x_m"][-1] - s["x_m"][first]
+
+
 def test_spin_up_does_not_depend_on_the_record_interval():
     drive = _drive(duration=0.1, spin_up=0.04)
     a = run_wheel(WHEEL, MODEL, slip=0.2, drive=drive, **RUN)
@@ -124,9 +135,11 @@ def test_default_duration_adds_the_spin_up():
         (dict(spin_up=0.08, duration=0.1), dict(omega=2.0), "at most 0.05 s"),
         (dict(spin_up=0.01, duration=0.1), dict(omega=None, drive_torque=0.1), "nonzero omega"),
         (dict(spin_up=0.01, duration=0.1), dict(omega=0.0), "nonzero omega"),
+        (dict(initial_speed=0.1, duration=0.1), dict(slip=0.2), "0 when slip is given"),
+        (dict(initial_speed=float("nan")), {}, "initial_speed = nan"),
     ],
 )
-def test_bad_spin_up_is_a_clear_error(drive, kw, says):
+def test_bad_drive_is_a_clear_error(drive, kw, says):
     with pytest.raises(InputError) as err:
         run_wheel(WHEEL, MODEL, drive=_drive(**drive), **{**RUN, **kw})
-    assert err.value.field == "spin_up" and says in str(err.value)
+    assert err.value.field == next(iter(drive)) and says in str(err.value)

@@ -401,6 +401,11 @@ def wheel(
         help="Time [s] over which --omega (and a forced-slip forward speed) ramps up linearly from "
         "rest at the start of the drive; 0 = impulsive start.",
     ),
+    initial_speed: float = typer.Option(
+        0.0,
+        "--initial-speed",
+        help="Forward velocity [m/s] of a self-propelled wheel when the drive starts (default from rest).",
+    ),
     window: float | None = typer.Option(
         None,
         "--window",
@@ -469,7 +474,7 @@ def wheel(
                 flip=flip,
             ),
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
-            drive=Drive(duration=duration, spin_up=spin_up),
+            drive=Drive(duration=duration, spin_up=spin_up, initial_speed=initial_speed),
             dilatancy=_dilatancy(dilatancy),
             surface_friction=None
             if surface_friction is None

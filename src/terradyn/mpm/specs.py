@@ -289,17 +289,22 @@ class Drive(_Spec):
     (0.05-1) of the drive. ``spin_up`` [s] (0: the wheel starts at full spin) ramps the prescribed
     spin, and a prescribed forward speed with it (the slip stays as set), linearly from rest over the
     first ``spin_up`` of the drive (a rate of ``omega / spin_up``); it must end before the averaged
-    part of the drive begins."""
+    part of the drive begins. ``initial_speed`` [m/s] is the forward velocity a wheel whose forward
+    motion is free (self-propelled or towing) has when the drive starts (0: from rest)."""
 
     sink_time: float | None = None
     duration: float | None = None
     average_fraction: float = 0.5
     spin_up: float = 0.0
+    initial_speed: float = 0.0
 
     def __post_init__(self) -> None:
         _optional_positive("sink_time", self.sink_time, allow_zero=True)
         _optional_positive("duration", self.duration)
         _set(self, "spin_up", check_positive("spin_up", self.spin_up, allow_zero=True))
+        _set(
+            self, "initial_speed", check_range("initial_speed", self.initial_speed, -100.0, 100.0, unit="m/s")
+        )
         _set(self, "average_fraction", check_range("average_fraction", self.average_fraction, 0.05, 1.0))
 
 
@@ -333,6 +338,7 @@ LEGACY: dict[str, tuple[str, str]] = {
     "duration": ("drive", "duration"),
     "average_fraction": ("drive", "average_fraction"),
     "spin_up": ("drive", "spin_up"),
+    "initial_speed": ("drive", "initial_speed"),
 }
 
 #: keywords that override single parameters of the material's continuum model

@@ -186,6 +186,10 @@ def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, dr
             "0 unless a nonzero omega is prescribed",
             "the spin-up ramps the prescribed spin",
         )
+    if drive.initial_speed != 0 and slip is not None:
+        raise InputError(
+            "initial_speed", drive.initial_speed, "0 when slip is given", "the forward speed is imposed"
+        )
     duration = drive.duration
     if duration is None:
         steady = not torque_mode and spin != 0
@@ -229,7 +233,8 @@ def run_wheel(
 
     The wheel first sinks under its load for ``drive.sink_time`` [s] (not spinning, vertical motion
     free, grains damped), then spins at ``omega`` [rad/s] about +y for ``drive.duration`` [s]
-    (reached after ``drive.spin_up`` [s] of a linear ramp from rest, 0 by default). With
+    (reached after ``drive.spin_up`` [s] of a linear ramp from rest, 0 by default; a free forward
+    motion starts at ``drive.initial_speed``). With
     ``slip`` given the forward speed is prescribed, ``vx = (1 - slip) omega r`` (r: nominal outer
     radius), and the vertical motion is free under the load; with ``slip=None`` both translations are
     free (self-propelled). ``omega = 0`` with ``slip=None`` leaves a body resting under its load. The
@@ -285,7 +290,7 @@ def run_wheel(
     state = _body_state(c, seg, pose0, np.zeros(3, dtype=np.bool_), mass, load_w, w, inertia_w)
     settle_phases, settle = _settle_phases(c, grid.depth, dt)
     damping = c.model.wave_speed() / grid.depth
-    drive_twist = (m.v_forward if m.slip is not None else 0.0, 0.0, m.omega)
+    drive_twist = (m.v_forward if m.slip is not None else specs["drive"].initial_speed, 0.0, m.omega)
     phases = [
         *settle_phases,
         Phase("sink", max(1, round(m.sink_time / dt)), damping=damping, free=(False, True, False)),
@@ -305,6 +310,7 @@ def run_wheel(
         duration=m.duration,
         sink_time=m.sink_time,
         **({"spin_up": specs["drive"].spin_up} if specs["drive"].spin_up else {}),
+        **({"initial_speed": specs["drive"].initial_speed} if specs["drive"].initial_speed else {}),
         settle_time=settle,
         bed_length=grid.width,
         bed_depth=grid.depth,
