@@ -57,9 +57,14 @@ def test_quick_mpm_rows_of_chapters_4_and_8(quick_report):
     assert depth["slope_mpm_N_per_m"] > 0 and depth["slope_rft_N_per_m"] > 0
     (wheel,) = run.results[("ch8-high-speed", "mpm")]["tables"]["high_speed"]
     assert 0.0 < wheel["slip_mpm"] < 1.0 and wheel["sinkage_mpm_m"] > 0.0
-    assert f"slip {wheel['slip_mpm']:.2f}" in " ".join(
-        f["text"] for f in run.results[("ch8-high-speed", "mpm")]["findings"]
-    )
+    texts = " ".join(f["text"] for f in run.results[("ch8-high-speed", "mpm")]["findings"])
+    assert f"slip {wheel['slip_mpm']:.2f}" in texts
+    # the wheel started three ways: the row's spin-up run is the first, the others are new runs
+    starts = run.results[("ch8-high-speed", "mpm")]["tables"]["high_speed_start"]
+    names = [s["start"].split(",")[0] for s in starts]
+    assert names == ["spin-up 0.15 s from rest", "impulsive", "impulsive"]
+    assert starts[0]["slip_mpm"] == wheel["slip_mpm"] and starts[1]["slip_mpm"] != wheel["slip_mpm"]
+    assert "start history at omega sqrt(l/g) = 0.5" in texts
 
 
 def test_rerun_reuses_the_cache(quick_report):
