@@ -67,3 +67,16 @@ def test_the_blend_moves_every_point_of_a_single_field_grid(f):
     vel = apic.copy()
     flip_blend(pos, np.ones((50, 2)), vel, grid_dv, 0.0, 0.0, 0.1, f)
     assert np.all(np.abs(vel - apic).sum(axis=1) > 0)
+
+
+def test_a_run_says_which_transfer_it_used():
+    from mpm_reference import MODEL
+    from terradyn.geometry import Plate
+    from terradyn.mpm import Resolution, run_intrusion
+
+    fast = dict(speed=0.2, bed_width=0.2, bed_depth=0.12, settle_time=0.02)
+    apic = run_intrusion(Plate(0.08, 0.1), MODEL, depth=0.01, cell_size=0.01, **fast).metadata
+    fine = Resolution(cell_size=0.01, flip=0.99)
+    blend = run_intrusion(Plate(0.08, 0.1), MODEL, depth=0.01, resolution=fine, **fast).metadata
+    assert apic["flip"] == 0.0 and "APIC, quadratic" in apic["model"]
+    assert blend["flip"] == 0.99 and "FLIP 0.99 / APIC blend" in blend["model"]

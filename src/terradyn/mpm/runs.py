@@ -541,8 +541,12 @@ def _body_state(c: _Common, seg, pose, free, mass, load, width, inertia=None) ->
 
 def _metadata(runner: Runner, model: GranularModel, body: Body, eff: Body, wall: float) -> dict[str, Any]:
     g = runner.bed_grid
+    transfer = "APIC" if runner.flip == 0 else f"FLIP {runner.flip:g} / APIC blend"
     return {
-        "model": "terradyn MPM (plane strain, Dunatunga-Kamrin granular model, APIC, quadratic B-splines)",
+        "model": (
+            f"terradyn MPM (plane strain, Dunatunga-Kamrin granular model, {transfer}, quadratic B-splines)"
+        ),
+        "flip": runner.flip,
         "citation": "S. Dunatunga, K. Kamrin, J. Fluid Mech. 779 (2015), doi:10.1017/jfm.2015.383",
         "friction_mapping": "mu = sin(phi) (plane-strain Drucker-Prager matched to Mohr-Coulomb)",
         "body": repr(body),
