@@ -260,6 +260,10 @@ SIZES = ("--cell-sizes", "0.01,0.008,0.006")
         (("intrude", *PLATE_ARGS, "--flip", "2"), "--flip"),
         (("wheel", *WHEEL_ARGS, "--flip", "-0.5"), "--flip"),
         (("verify", "strip-footing", "--phi", "30", "--flip", "1.01"), "--flip"),
+        (("wheel", *WHEEL_ARGS, "--spin-up", "-1"), "--spin-up"),
+        (("wheel", *WHEEL_ARGS, "--duration", "1", "--spin-up", "0.8"), "--spin-up"),
+        (("wheel", *WHEEL_ARGS, "--slip", "0.2", "--initial-speed", "0.1"), "--initial-speed"),
+        (("converge", "wheel", *WHEEL_ARGS, *SIZES, "--spin-up", "-1"), "--spin-up"),
     ],
 )
 def test_cli_names_the_flag_of_a_bad_spec_field(run_cli, args, flag):

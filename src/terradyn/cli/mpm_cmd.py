@@ -604,6 +604,9 @@ def converge_wheel_cmd(
     omega: float | None = typer.Option(None, "--omega", help="Spin rate [rad/s]."),
     slip: float | None = typer.Option(None, "--slip", help="Imposed slip; omit for self-propelled."),
     duration: float | None = typer.Option(None, "--duration", help="Driving time [s]."),
+    spin_up: float = typer.Option(
+        0.0, "--spin-up", help="Time [s] over which --omega ramps up linearly from rest; 0 = impulsive."
+    ),
     material: str = MATERIAL,
     width: float = WHEEL_WIDTH,
     shape: str = typer.Option("circular", "--shape", help="Wheel shape: circular, grousered or flapped."),
@@ -634,7 +637,7 @@ def converge_wheel_cmd(
             slip=slip,
             bed=Bed(packing=packing),
             resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric, flip=flip),
-            drive=Drive(duration=duration),
+            drive=Drive(duration=duration, spin_up=spin_up),
             grid_phases=grid_phases,
         )
     _emit_convergence(res, fmt, out_path, plot_path, "MPM wheel")
