@@ -353,9 +353,9 @@ def high_speed(quick: bool) -> ItemOutput:
         Finding(
             "the MPM wheel carries the physical 18 mm lugs, the RFT and DRFT wheel lugs at a third of "
             "that height (terradyn.studies.high_speed); the MPM medium is about twice as strong as its "
-            "RFT medium on a plate (docs/mpm.md, 'Against RFT'); the MPM steady state is not "
-            "resolution-converged at 9 mm (at 6.5 mm and 0.5 the wheel sinks 72 mm against 60 mm, "
-            "docs/mpm.md)"
+            "RFT medium on a plate (docs/mpm.md, 'Against RFT'); the MPM wheel is not "
+            "resolution-converged: at 0.5 it sinks 57 / 73 / 94 mm and slips 0.47 / 0.63 / 0.79 at "
+            "9 / 6.5 / 4.5 mm cells (docs/mpm.md, 'The start')"
             + (
                 "; quick form: 26.5 mm cells (lugs unresolved), 0.6 s of drive; not converged"
                 if quick
