@@ -539,12 +539,14 @@ class Runner:
         use = self._thread_count(threads)
         numba.set_num_threads(use)
         start = time.perf_counter()
-        pieces = [(0, n, None)] if ramp is None else ramp[0].ramp_pieces(ramp[1], n)
+        target, pieces = None, [(0, n, 1.0)]
+        if ramp is not None and ramp[0].twist is not None:
+            target = np.asarray(ramp[0].twist, dtype=float)
+            pieces = ramp[0].ramp_pieces(ramp[1], n)
+        held = ~self.body.free[:3]  # the prescribed components
         try:
             for offset, count, fraction in pieces:
-                if fraction is not None and ramp is not None and ramp[0].twist is not None:
-                    target = np.asarray(ramp[0].twist, dtype=float)
-                    held = ~self.body.free[:3]
+                if target is not None:
                     self.body.twist[held] = fraction * target[held]
                 self._advance(count, damping, forces[offset : offset + count])
         finally:
