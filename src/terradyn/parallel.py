@@ -52,6 +52,23 @@ def _with_report(total: int, on_done: Callable[[int], None] | None) -> Callable[
     return both
 
 
+def _with_item(
+    on_done: Callable[[int], None] | None, on_item: Callable[[int], None] | None
+) -> Callable[[int], None] | None:
+    """One callback taking the finished item's index: counts one item for ``on_done`` and passes
+    the index to ``on_item``."""
+    if on_done is None and on_item is None:
+        return None
+
+    def finished(index: int) -> None:
+        if on_done is not None:
+            on_done(1)
+        if on_item is not None:
+            on_item(index)
+
+    return finished
+
+
 T = TypeVar("T")
 R = TypeVar("R")
 
@@ -63,20 +80,25 @@ def map_items(
     scheduler: str = "serial",
     workers: int | None = None,
     on_done: Callable[[int], None] | None = None,
+    on_item: Callable[[int], None] | None = None,
 ) -> list[R]:
-    """Apply ``fn`` to every item; results in item order."""
+    """Apply ``fn`` to every item; results in item order.
+
+    ``on_done(n)`` is called with the number of items just finished, ``on_item(i)`` with the index
+    of each item as it finishes (in completion order, which differs from item order in parallel)."""
     on_done = _with_report(len(items), on_done)
+    finished = _with_item(on_done, on_item)
     if scheduler == "serial":
         out = []
-        for item in items:
+        for i, item in enumerate(items):
             out.append(fn(item))
-            if on_done is not None:
-                on_done(1)
+            if finished is not None:
+                finished(i)
         return out
     if workers is not None and not (isinstance(workers, int) and workers >= 1):
         raise InputError("workers", workers, "an integer >= 1")
     if scheduler == "processes":
-        return _process_pool(fn, items, workers, on_done)
+        return _process_pool(fn, items, workers, finished)
     try:
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:
@@ -113,8 +135,8 @@ def map_items(
         results: list[Any] = [None] * len(futures)
         for fut in as_completed(futures):
             results[index[fut.key]] = fut.result()
-            if on_done is not None:
-                on_done(1)
+            if finished is not None:
+                finished(index[fut.key])
         return results
     finally:
         client.close()
@@ -123,7 +145,7 @@ def map_items(
 
 
 def _process_pool(
-    fn: Callable[[T], R], items: Sequence[T], workers: int | None, on_done: Callable[[int], None] | None
+    fn: Callable[[T], R], items: Sequence[T], workers: int | None, finished: Callable[[int], None] | None
 ) -> list[R]:
     """Standard-library process pool (spawned workers: safe with numba's threads)."""
     import multiprocessing
@@ -137,8 +159,8 @@ def _process_pool(
         futures = {pool.submit(fn, item): i for i, item in enumerate(items)}
         for fut in as_completed(futures):
             results[futures[fut]] = fut.result()
-            if on_done is not None:
-                on_done(1)
+            if finished is not None:
+                finished(futures[fut])
     except BaseException:  # an interrupt or a failed item: stop the workers now, do not wait for them
         workers_left = list(getattr(pool, "_processes", {}).values())
         pool.shutdown(wait=False, cancel_futures=True)

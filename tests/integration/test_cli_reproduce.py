@@ -33,12 +33,18 @@ def test_quick_chapter_and_resume(run_cli, tmp_path):
     html = (out / "report.html").read_text(encoding="utf-8")
     assert "ch3-pressure-sinkage" in html and "Chapter 9" not in html
     assert "0 reused" in stdout
-    # stderr is not a terminal here: one line per finished row, the last with nothing left
+    # stderr is not a terminal here: the expected time and where it comes from, then one line per
+    # finished row naming it, the last with nothing left
     lines = [ln for ln in err.splitlines() if ln.startswith("reproduce (")]
     assert lines, err
-    last = r"reproduce \((\d+) rows\): \1/\1 done, elapsed \d+:\d\d:\d\d, ETA 0:00:00"
+    first = r"reproduce \(1 rows\): expected \d+:\d\d:\d\d \(row times: .*measured on .*\)"
+    assert re.fullmatch(first, lines[0])
+    last = (
+        r"reproduce \((\d+) rows\): \1/\1 done \(ch3-pressure-sinkage/bekker\), "
+        r"elapsed \d+:\d\d:\d\d, ETA 0:00:00"
+    )
     assert re.fullmatch(last, lines[-1])
-    assert len(lines) == int(lines[-1].split("(")[1].split()[0])
+    assert len(lines) == 1 + int(lines[-1].split("(")[1].split()[0])
     code, stdout, err = run_cli(*args)
     assert code == 0 and "0 rows run" in stdout
     assert "done, elapsed" not in err  # nothing ran

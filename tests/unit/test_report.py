@@ -237,3 +237,58 @@ def test_dem_rows_are_not_listed_without_lammps(monkeypatch):
     monkeypatch.setattr(terradyn.dem, "load_lammps", missing)
     assert "dem" not in [m for m, _ in rows_of(item("fig-4-1"))]
     assert "mpm" in [m for m, _ in rows_of(item("fig-4-1"))]
+
+
+def test_row_times_weight_the_eta_and_prefer_the_folders_own_runs(quick_report, tmp_path):
+    """The ETA of ``terradyn reproduce`` weights rows by their cost: a stale cache entry of the same
+    row (this machine) beats the shipped table, which beats the median of the same model's rows."""
+    import shutil
+
+    from terradyn.report.build import _shipped_row_times, expected_row_times, measured_row_times
+
+    shipped = _shipped_row_times()
+    names = {f"{k}/{m}" for k, m in units_for(ITEMS)}
+    # the quick table is measured for every row and names no row that is gone
+    assert set(shipped["quick"]) == names
+    assert set(shipped["full"]) <= names
+    folder, _ = quick_report
+    copy = tmp_path / "copy"
+    shutil.copytree(folder, copy)
+    key, model = "fig-6-8", "mpm"
+    path = cache_path(copy, key, model, True)
+    data = json.loads(path.read_text())
+    path.write_text(json.dumps({**data, "code": "0" * 64, "wall_time_s": 1234.5}))  # stale, still a cost
+    assert measured_row_times(copy, True)[f"{key}/{model}"] == 1234.5
+    units = [(key, model), ("ch9-wedges", "rft"), ("no-such-item", "mpm"), ("no-such-item", "nomodel")]
+    times, source = expected_row_times(units, quick=True, folder=copy)
+    assert times[0] == 1234.5
+    assert times[1] == pytest.approx(measured_row_times(copy, True)["ch9-wedges/rft"])
+    import numpy as np
+
+    mpm = [t for n, t in {**shipped["quick"], **measured_row_times(copy, True)}.items() if n.endswith("/mpm")]
+    assert times[2] == pytest.approx(float(np.median(mpm)))
+    assert times[3] > 0
+    assert "2 from this folder's earlier runs" in source and "2 guessed" in source
+    # without a folder: the shipped table
+    times, source = expected_row_times(units[:2], quick=True)
+    assert times == [shipped["quick"]["fig-6-8/mpm"], shipped["quick"]["ch9-wedges/rft"]]
+    assert source.startswith("0 from this folder's earlier runs, 2 measured on")
+
+
+def test_weighted_eta_counts_what_is_left_not_rows(monkeypatch, capsys):
+    """Finishing a cheap row first must not promise the expensive one as quickly."""
+    import re
+
+    from terradyn.cli import _common
+
+    clock = iter([0.0, 10.0, 20.0])
+    monkeypatch.setattr("time.perf_counter", lambda: next(clock))
+    monkeypatch.setattr(_common, "_quiet", lambda: True)
+    costs = {"cheap": 10.0, "dear": 990.0}
+    with _common.weighted_progress(costs, "work", source="test", workers=1) as finished:
+        finished("cheap")  # 10 s spent on 10 s of expected cost: pace 1, 990 s left
+        finished("dear")
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0] == "work: expected 0:16:40 (row times: test)"
+    assert re.fullmatch(r"work: 1/2 done \(cheap\), elapsed 0:00:10, ETA 0:16:30", lines[1])
+    assert lines[2].endswith("2/2 done (dear), elapsed 0:00:20, ETA 0:00:00")

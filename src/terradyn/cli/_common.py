@@ -146,6 +146,64 @@ def progress(total: int, description: str, *, log: bool = False) -> Iterator[Cal
 
 
 @contextmanager
+def weighted_progress(
+    costs: dict[str, float], description: str, *, source: str = "", workers: int = 1
+) -> Iterator[Callable[[str], None]]:
+    """Progress of named pieces of work whose costs differ (``costs``: name -> expected seconds on one
+    core). Yields ``finished(name)``. The ETA is the expected cost of what is left, scaled by the pace
+    so far (elapsed / expected cost of what finished), so one long piece does not read as one row in
+    thirty. On a terminal a bar; in a pipe or CI one line at the start (the expected total, at
+    ``workers`` in parallel, and where the costs come from) and one line per finished piece."""
+    import time
+
+    total = sum(costs.values())
+    n = len(costs)
+    if _quiet():
+        start = time.perf_counter()
+        done: list[str] = []
+        if n:
+            sys.stderr.write(
+                f"{description}: expected {_clock(total / max(1, min(workers, n)))}"
+                + (f" (row times: {source})" if source else "")
+                + "\n"
+            )
+            sys.stderr.flush()
+
+        def _line(name: str) -> None:
+            done.append(name)
+            spent = time.perf_counter() - start
+            finished = sum(costs.get(d, 0.0) for d in done)
+            left = total - finished
+            pace = spent / finished if finished > 0 else 1.0 / max(1, min(workers, n))
+            sys.stderr.write(
+                f"{description}: {len(done)}/{n} done ({name}), elapsed {_clock(spent)}, "
+                f"ETA {_clock(left * pace)}\n"
+            )
+            sys.stderr.flush()
+
+        yield _line
+        return
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    with Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.fields[rows]}/" + str(n)),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        transient=True,
+    ) as bar:
+        task = bar.add_task(description, total=max(total, 1e-9), rows=0)
+        count = [0]
+
+        def _advance(name: str) -> None:
+            count[0] += 1
+            bar.update(task, advance=costs.get(name, 0.0), rows=count[0])
+
+        yield _advance
+
+
+@contextmanager
 def fraction_progress(label: str, unit: str = "") -> Iterator[Callable[[float, float], None]]:
     """A progress bar driven by ``update(value, fraction_done)`` (e.g. simulated time), with ETA."""
     if _quiet():

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import typer
 
 from ..errors import InputError
@@ -26,8 +28,8 @@ def reproduce(
     from ..io import current_output_set
     from ..report import CHAPTERS
     from ..report import reproduce as run_report
-    from ..report.build import rows_to_run
-    from ._common import progress
+    from ..report.build import expected_row_times, rows_to_run
+    from ._common import weighted_progress
 
     folder = out_folder("--out", out)
     assert folder is not None
@@ -52,8 +54,13 @@ def reproduce(
         )
     if scheduler == "auto":
         scheduler = "serial" if quick else "processes"
-    total = len(rows_to_run(folder, chapters=chapters, quick=quick, only=only))
-    with progress(total, f"reproduce ({total} rows)", log=True) as advance:
+    todo = rows_to_run(folder, chapters=chapters, quick=quick, only=only)
+    times, source = expected_row_times(todo, quick=quick, folder=folder)
+    costs = {f"{key}/{model}": t for (key, model), t in zip(todo, times, strict=True)}
+    parallel = 1 if scheduler == "serial" else (workers or os.cpu_count() or 1)
+    with weighted_progress(
+        costs, f"reproduce ({len(todo)} rows)", source=source, workers=parallel
+    ) as finished:
         try:
             run = run_report(
                 folder,
@@ -62,7 +69,7 @@ def reproduce(
                 only=only,
                 scheduler=scheduler,
                 workers=workers,
-                on_done=advance,
+                on_row=lambda key, model: finished(f"{key}/{model}"),
             )
         except KeyboardInterrupt as exc:
             exc.message = f"finished rows are cached in {folder / 'cache'}; rerun the same command to resume"  # type: ignore[attr-defined]

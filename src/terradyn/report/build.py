@@ -32,6 +32,8 @@ __all__ = [
     "ReportRun",
     "cache_path",
     "code_fingerprint",
+    "expected_row_times",
+    "measured_row_times",
     "package_versions",
     "reproduce",
     "rows_to_run",
@@ -40,6 +42,8 @@ __all__ = [
 ]
 
 CACHE_FOLDER = "cache"
+#: shipped wall times of the rows (seconds, one core), for the ETA only: not part of the code fingerprint
+ROW_TIMES_FILE = "row_times.json"
 
 
 @dataclass
@@ -205,10 +209,71 @@ def code_fingerprint() -> str:
     root = Path(__file__).resolve().parent.parent
     digest = hashlib.sha256()
     for path in sorted(root.rglob("*")):
+        if path.name == ROW_TIMES_FILE:  # ETA weights: updating them must not invalidate caches
+            continue
         if path.suffix in (".py", ".toml", ".csv", ".json") and "__pycache__" not in path.parts:
             digest.update(str(path.relative_to(root)).encode())
             digest.update(path.read_bytes())
     return digest.hexdigest()
+
+
+def measured_row_times(folder: str | Path, quick: bool) -> dict[str, float]:
+    """Wall times [s] of the rows cached in the report folder ``folder`` (``"key/model"`` -> s), for
+    either mode and whatever code computed them (a stale entry still says what the row costs)."""
+    out: dict[str, float] = {}
+    mode = "quick" if quick else "full"
+    for path in sorted((Path(folder) / CACHE_FOLDER).glob(f"*__{mode}.json")):
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+            wall = float(data["wall_time_s"])
+        except (OSError, ValueError, KeyError, TypeError):
+            continue
+        if data.get("status") == "ran" and np.isfinite(wall) and wall >= 0:
+            out[f"{data.get('key')}/{data.get('model')}"] = wall
+    return out
+
+
+@functools.cache
+def _shipped_row_times() -> dict[str, Any]:
+    path = Path(__file__).with_name(ROW_TIMES_FILE)
+    return dict(json.loads(path.read_text(encoding="utf-8")))
+
+
+def expected_row_times(
+    units: Sequence[tuple[str, str]], *, quick: bool, folder: str | Path | None = None
+) -> tuple[list[float], str]:
+    """Expected wall time [s, one core] of each (key, model) row, and where the figures come from.
+
+    In order of preference: the row's own earlier run in ``folder`` (a stale cache entry of the same
+    mode), the times shipped in ``row_times.json`` (measured on a two-core machine, see its
+    ``measured`` field), the median of the known rows of the same model, the median of all known
+    rows. Used to weight the ETA of ``terradyn reproduce``: its rows differ in cost by 1e5."""
+    mode = "quick" if quick else "full"
+    shipped = _shipped_row_times()
+    known: dict[str, float] = {k: float(v) for k, v in shipped[mode].items()}
+    local = measured_row_times(folder, quick) if folder is not None else {}
+    known.update(local)
+    by_model: dict[str, list[float]] = {}
+    for name, wall in known.items():
+        by_model.setdefault(name.rsplit("/", 1)[-1], []).append(wall)
+    every = [w for walls in by_model.values() for w in walls]
+    fallback = float(np.median(every)) if every else 1.0
+    times = []
+    for key, model in units:
+        name = f"{key}/{model}"
+        if name in known:
+            times.append(known[name])
+        else:
+            walls = by_model.get(model)
+            times.append(float(np.median(walls)) if walls else fallback)
+    n_local = sum(f"{k}/{m}" in local for k, m in units)
+    n_shipped = sum(f"{k}/{m}" in shipped[mode] and f"{k}/{m}" not in local for k, m in units)
+    guessed = len(units) - n_local - n_shipped
+    source = (
+        f"{n_local} from this folder's earlier runs, {n_shipped} measured on {shipped['measured']}, "
+        f"{guessed} guessed from rows of the same model"
+    )
+    return times, source
 
 
 def rows_to_run(
@@ -232,6 +297,7 @@ def reproduce(
     scheduler: str = "serial",
     workers: int | None = None,
     on_done: Callable[[int], None] | None = None,
+    on_row: Callable[[str, str], None] | None = None,
 ) -> ReportRun:
     """Run the rows of the chosen chapters (reusing cached ones) and write ``report.html`` and
     ``report.md`` (with ``figures/``) into the folder ``out``.
@@ -244,6 +310,7 @@ def reproduce(
     only : item keys to run (default every item of the chapters)
     scheduler, workers : as :func:`terradyn.parallel.map_items`
     on_done : progress callback, called with the number of rows just finished
+    on_row : progress callback, called with (key, model) of each row as it finishes
     """
     from ..io import check_output_folder
     from ..parallel import map_items
@@ -264,8 +331,20 @@ def reproduce(
     reused = len(results)
     if todo:
         n = 1 if scheduler == "serial" else (workers or max(1, min(len(todo), os.cpu_count() or 1)))
+        row_done = None
+        if on_row is not None:
+            report_row = on_row
+
+            def row_done(index: int) -> None:
+                report_row(todo[index][0], todo[index][1])
+
         done = map_items(
-            run_unit, todo, scheduler=scheduler if n > 1 else "serial", workers=workers, on_done=on_done
+            run_unit,
+            todo,
+            scheduler=scheduler if n > 1 else "serial",
+            workers=workers,
+            on_done=on_done,
+            on_item=row_done,
         )
         for r in done:
             results[(r["key"], r["model"])] = r
