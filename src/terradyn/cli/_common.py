@@ -95,31 +95,17 @@ def _clock(seconds: float) -> str:
 
 
 @contextmanager
-def progress(total: int, description: str, *, log: bool = False) -> Iterator[Callable[[int], None]]:
+def progress(total: int, description: str) -> Iterator[Callable[[int], None]]:
     """A progress bar with ETA on a terminal, silent in pipes and CI. Yields ``advance(n)``.
 
-    With ``log`` (for work of hours, often run with stderr sent to a file) a pipe or CI gets one
-    line per advance instead of silence: ``description: k/total done, elapsed H:MM:SS, ETA H:MM:SS``
-    (the ETA at the mean pace so far)."""
+    (Work of hours whose pieces differ in cost, often run with stderr sent to a file, uses
+    :func:`weighted_progress`, which writes one line per finished piece there.)"""
     if _quiet():
-        import time
 
-        start = time.perf_counter()
-        done = 0
+        def _silent(n: int = 1) -> None:
+            return None
 
-        def _line(n: int = 1) -> None:
-            nonlocal done
-            done += n
-            if not log or total <= 0:
-                return
-            spent = time.perf_counter() - start
-            left = spent / done * (total - done) if done else 0.0
-            sys.stderr.write(
-                f"{description}: {done}/{total} done, elapsed {_clock(spent)}, ETA {_clock(left)}\n"
-            )
-            sys.stderr.flush()
-
-        yield _line
+        yield _silent
         return
     from rich.progress import (
         BarColumn,
