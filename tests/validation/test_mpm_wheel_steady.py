@@ -91,3 +91,27 @@ def test_the_high_speed_wheels_steady_state_does_not_depend_on_its_start():
     # the summaries average the last half of each drive: 2.5-5 s and 2-4 s, both after full spin
     assert abs(a["slip"] - b["slip"]) < 0.05, (a, b)
     assert abs(a["sinkage_m"] - b["sinkage_m"]) < 0.1 * min(a["sinkage_m"], b["sinkage_m"]), (a, b)
+
+
+@pytest.mark.slow
+def test_the_self_propelled_slip_is_the_zero_of_the_forced_slip_pull():
+    """The same wheel, FLIP 0.99, 9 mm cells, omega sqrt(l/g) = 1.0, 1 s spin-up: the forced-slip
+    pull is negative at slip 0.3 and positive at 0.5, the free wheel runs between them, within 0.05
+    of the straight line's zero (docs/mpm.md, "Why the slip does not converge": pulls -1.23 and +2.69
+    N, zero at 0.36, free wheel 0.344), and at a fixed slip the sinkage rises with the slip. Three
+    runs, about 6 min each."""
+    wheel, poppy = WheelGrousered(0.088, 0.05, 15, 0.018, 0.004), materials.get("poppy-cp")
+    load = 6.0 * 638.0 * 0.212**2 * 0.05 * 9.81
+    omega = 1.0 * math.sqrt(9.81 / 0.212)
+    fine = Resolution(cell_size=0.009, flip=0.99)
+    drive = Drive(duration=5.0, spin_up=1.0)
+    forced = {
+        s: run_wheel(wheel, poppy, load=load, omega=omega, slip=s, resolution=fine, drive=drive).summary
+        for s in (0.3, 0.5)
+    }
+    free = run_wheel(wheel, poppy, load=load, omega=omega, resolution=fine, drive=drive).summary
+    low, high = forced[0.3]["drawbar_pull_N"], forced[0.5]["drawbar_pull_N"]
+    assert low < 0.0 < high, forced
+    zero = 0.3 + 0.2 * (-low) / (high - low)
+    assert 0.3 < free["slip"] < 0.5 and abs(free["slip"] - zero) < 0.05, (free, forced)
+    assert forced[0.3]["sinkage_m"] < free["sinkage_m"] < forced[0.5]["sinkage_m"], (free, forced)
