@@ -218,8 +218,8 @@ def code_fingerprint() -> str:
 
 
 def measured_row_times(folder: str | Path, quick: bool) -> dict[str, float]:
-    """Wall times [s] of the rows cached in the report folder ``folder`` (``"key/model"`` -> s), for
-    either mode and whatever code computed them (a stale entry still says what the row costs)."""
+    """Wall times [s] of the rows cached in the report folder ``folder`` (``"key/model"`` -> s) for the
+    quick or the full form, whatever code computed them (a stale entry still says what the row costs)."""
     out: dict[str, float] = {}
     mode = "quick" if quick else "full"
     for path in sorted((Path(folder) / CACHE_FOLDER).glob(f"*__{mode}.json")):
