@@ -355,10 +355,10 @@ def high_speed(quick: bool) -> ItemOutput:
             "that height (terradyn.studies.high_speed); the MPM medium is about twice as strong as its "
             "RFT medium on a plate (docs/mpm.md, 'Against RFT'); the MPM wheel is not "
             "resolution-converged: at 0.5 it sinks 57 / 73 / 94 mm and slips 0.47 / 0.63 / 0.79 at "
-            "9 / 6.5 / 4.5 mm cells (docs/mpm.md, 'The start'); at a fixed slip its sinkage converges "
-            "(2-3 % from 9 to 6.5 mm) but its pull, at most 3 % of the load, moves by 3-7 % of the load, "
-            "and the self-propelled slip is the zero of that flat pull curve (docs/mpm.md, 'Why the "
-            "slip does not converge')"
+            "9 / 6.5 / 4.5 mm cells (docs/mpm.md, 'The start'); at a fixed slip of 0.5 its sinkage "
+            "(57.9 / 59.5 / 59.7 mm) and torque converge but its pull (+2.7 / -3.0 / -9.4 N) falls by 7 % "
+            "of the load per refinement, and the self-propelled slip is the zero of that flat pull curve "
+            "(docs/mpm.md, 'Why the slip does not converge')"
             + (
                 "; quick form: 26.5 mm cells (lugs unresolved), 0.6 s of drive; not converged"
                 if quick
