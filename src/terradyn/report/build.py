@@ -259,19 +259,19 @@ def expected_row_times(
     every = [w for walls in by_model.values() for w in walls]
     fallback = float(np.median(every)) if every else 1.0
     times = []
+    counts = {"local": 0, "shipped": 0, "guessed": 0}
     for key, model in units:
         name = f"{key}/{model}"
         if name in known:
             times.append(known[name])
+            counts["local" if name in local else "shipped"] += 1
         else:
             walls = by_model.get(model)
             times.append(float(np.median(walls)) if walls else fallback)
-    n_local = sum(f"{k}/{m}" in local for k, m in units)
-    n_shipped = sum(f"{k}/{m}" in shipped[mode] and f"{k}/{m}" not in local for k, m in units)
-    guessed = len(units) - n_local - n_shipped
+            counts["guessed"] += 1
     source = (
-        f"{n_local} from this folder's earlier runs, {n_shipped} measured on {shipped['measured']}, "
-        f"{guessed} guessed from rows of the same model"
+        f"{counts['local']} from this folder's earlier runs, {counts['shipped']} measured on "
+        f"{shipped['measured']}, {counts['guessed']} guessed from rows of the same model"
     )
     return times, source
 
