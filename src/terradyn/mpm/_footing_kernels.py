@@ -57,6 +57,7 @@ def advance_footing(
     averaged,
     forces,
     flip=0.0,
+    local_damping=0.0,
 ):
     """Run ``n_steps`` steps (global step numbers ``step0 + k``).
 
@@ -75,6 +76,8 @@ def advance_footing(
     x (the particle's old velocity plus the interpolated grid velocity change) + (1 - ``flip``) x
     the interpolated grid velocity (0: the APIC update of the solver; positions and affine matrices
     always from the new grid velocity). Used to measure the transfer's numerical dissipation.
+    ``local_damping`` alpha in [0, 1): the rate-independent local damping of quasi-static explicit
+    codes (:func:`local_damp`) at the free nodes; 0 leaves the step unchanged.
     """
     g_mod = material[0]
     lam = material[1]
@@ -88,7 +91,8 @@ def advance_footing(
     keys = np.empty((pos.shape[0] if averaged else 0, 3), dtype=np.int64)
     s = settled
     use_flip = flip > 0.0
-    vel_old, pos_old, zero_stress, buf_old, grid_dv = flip_scratch(use_flip, pos, buf, grid_mass)
+    use_old = use_flip or local_damping > 0.0
+    vel_old, pos_old, zero_stress, buf_old, grid_dv = flip_scratch(use_old, pos, buf, grid_mass)
     for k in range(n_steps):
         step = step0 + k
         zg = z0 - s if follow else z0
@@ -96,13 +100,14 @@ def advance_footing(
         if step < ramp_steps:
             ramp = 0.5 * (1.0 - np.cos(np.pi * (step + 0.5) / ramp_steps))
         vz_foot = -speed * ramp
-        if use_flip:
+        if use_old:
             # the grid velocity before this step's forces: momentum / mass of a force-free scatter
             p2g(pos, vel, aff, zero_stress, mass, vol, x0, zg, h, dt, buf_old)
             vel_old[:] = vel
             pos_old[:] = pos
         p2g(pos, vel, aff, stress, mass, vol, x0, zg, h, dt, buf)
         grid_update(buf, grid_mass, grid_vel, dt, gravity, damping, pad, wall_kind, wall_mu)
+        j_floor = pad
         if follow:
             # the node line nearest the world floor and those below it: the floor stays within h/2
             # of floor_z (rounding down instead let it sink with the grid by up to a cell, and the bed
@@ -112,6 +117,8 @@ def advance_footing(
                 for j in range(pad + 1, j_floor + 1):
                     if grid_vel[i, j, 1] < 0.0:
                         grid_vel[i, j, 1] = 0.0
+        if local_damping > 0.0:
+            local_damp(buf_old, grid_mass, grid_vel, local_damping, pad, j_floor, foot_i, foot_j)
         if symmetric:
             for i in range(pad + 1):
                 for j in range(grid_mass.shape[1]):
@@ -167,3 +174,43 @@ def advance_footing(
         forces[k, 1] = fz
         forces[k, 2] = vz_foot
         s -= vz_foot * dt
+
+
+@njit(cache=True)
+def local_damp(buf_old, grid_mass, grid_vel, alpha, pad, j_floor, foot_i, foot_j):
+    """Local (non-viscous) damping of the free grid nodes, in place: each velocity component's
+    change over the step, ``dv`` (the unbalanced force x dt / m, gravity included), loses
+    ``alpha |dv|`` against the sign of the node's velocity before the step (the force-free scatter
+    ``buf_old``), as in the dynamic-relaxation codes used for collapse loads. It removes kinetic
+    energy where the motion reverses and vanishes in steady flow (no unbalanced force), so unlike a
+    viscosity it adds no force that grows with the loading speed. Wall, floor (``j <= j_floor``) and
+    footing nodes are left to their conditions, so the footing reads the grains' unbalanced force."""
+    nx = grid_mass.shape[0]
+    nz = grid_mass.shape[1]
+    for i in range(pad + 1, nx - 1 - pad):
+        for j in range(max(pad, j_floor) + 1, nz):
+            if grid_mass[i, j] <= _MASS_EPS:
+                continue
+            if foot_i[0] <= i <= foot_i[1] and foot_j[0] <= j <= foot_j[1]:
+                continue
+            m = 0.0
+            px = 0.0
+            pz = 0.0
+            for c in range(buf_old.shape[0]):
+                m += buf_old[c, i, j, 0]
+                px += buf_old[c, i, j, 1]
+                pz += buf_old[c, i, j, 2]
+            if m <= _MASS_EPS:
+                continue
+            vx0 = px / m
+            vz0 = pz / m
+            dvx = abs(grid_vel[i, j, 0] - vx0)
+            dvz = abs(grid_vel[i, j, 1] - vz0)
+            if vx0 > 0.0:
+                grid_vel[i, j, 0] -= alpha * dvx
+            elif vx0 < 0.0:
+                grid_vel[i, j, 0] += alpha * dvx
+            if vz0 > 0.0:
+                grid_vel[i, j, 1] -= alpha * dvz
+            elif vz0 < 0.0:
+                grid_vel[i, j, 1] += alpha * dvz

@@ -117,6 +117,8 @@ class NodeFooting:
     push_time_s: float = 0.0
     #: FLIP fraction of the particle velocity update (0: the solver's APIC)
     flip: float = 0.0
+    #: local damping alpha at the free nodes (0: none)
+    local_damping: float = 0.0
     #: the reading's plateau measures (:func:`plateau_measures`)
     N_gamma_drift: float = 0.0
     N_gamma_peak_ratio: float = 1.0
@@ -140,6 +142,7 @@ class NodeFooting:
             "volumetric": self.volumetric,
             "particles_per_cell": self.particles_per_cell,
             "flip": self.flip,
+            "local_damping": self.local_damping,
             "speed_m_s": self.speed_m_s,
             "settlement_m": self.settlement_m,
             "N_gamma": self.N_gamma,
@@ -174,6 +177,7 @@ def node_strip_footing(
     base_rows: int = 2,
     hold_time: float = 0.0,
     flip: float = 0.0,
+    local_damping: float = 0.0,
     progress: Callable[[float, float], None] | None = None,
 ) -> NodeFooting:
     """N_gamma of a rigid strip footing of ``width`` B [m] whose base is the grid nodes under it.
@@ -193,6 +197,9 @@ def node_strip_footing(
     (``N_gamma_held``, ``held_curve``). ``flip`` in [0, 1] blends the particle velocity update from
     the solver's APIC (0) towards FLIP (1), a diagnostic of the transfer's numerical dissipation
     (docs/mpm.md, "What the rate error is"); positions and affine matrices stay APIC's.
+    ``local_damping`` alpha in [0, 0.95] adds the local damping of quasi-static explicit codes at the
+    free nodes (:func:`terradyn.mpm._footing_kernels.local_damp`); a diagnostic: it does not stop
+    pure FLIP's creep and adds a speed-dependent excess (docs/mpm.md, "The creep is not ringing").
     ``progress(done, total)`` gets the steps done.
     """
     from .. import materials
@@ -224,6 +231,7 @@ def node_strip_footing(
     check_range("ramp_crossings", ramp_crossings, 0.0, 1e3)
     check_range("hold_time", hold_time, 0.0, 10.0, unit="s")
     flip = check_range("flip", flip, 0.0, 1.0)
+    local_damping = check_range("local_damping", local_damping, 0.0, 0.95)
     mat = materials.get(material) if isinstance(material, str) else material
     if mat.continuum is None or mat.bulk_density is None:
         raise InputError("material", mat.name, "a medium with a [continuum] table and a bulk density")
@@ -285,7 +293,8 @@ def node_strip_footing(
         f = np.zeros((n, 3))
         FK.advance_footing(n, step0, *args, damping, GRID_PAD, kinds, mus, grid.bounds, mat_arr,
                            foot_i, foot_j, base == "rough", symmetric, v, ramp_steps, settled, follow,
-                           -grid.depth, scratch, geo, volumetric == "patch", f, flip)  # fmt: skip
+                           -grid.depth, scratch, geo, volumetric == "patch", f, flip,
+                           local_damping)  # fmt: skip
         if not np.all(np.isfinite(f)):
             raise SolverError(f"the node footing went unstable (cell {h:g} m); lower cfl")
         done += n
@@ -347,6 +356,7 @@ def node_strip_footing(
         held_curve=(held_arr[:, 0], held_q) if len(held_n) else None,
         push_time_s=n_push * dt,
         flip=flip,
+        local_damping=local_damping,
         N_gamma_drift=drift,
         N_gamma_peak_ratio=peak_ratio,
     )
