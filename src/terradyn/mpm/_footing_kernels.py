@@ -13,7 +13,16 @@ import numpy as np
 from numba import njit
 
 from ._common_kernels import _MASS_EPS
-from ._kernels import flip_blend, flip_scratch, g2p, grid_change, grid_update, p2g, patch_divergence
+from ._kernels import (
+    chunk_sum,
+    flip_blend,
+    flip_scratch,
+    g2p,
+    grid_change,
+    grid_update,
+    p2g,
+    patch_divergence,
+)
 
 __all__: list[str] = []
 
@@ -182,9 +191,11 @@ def local_damp(buf_old, grid_mass, grid_vel, alpha, pad, j_floor, foot_i, foot_j
     change over the step, ``dv`` (the unbalanced force x dt / m, gravity included), loses
     ``alpha |dv|`` against the sign of the node's velocity before the step (the force-free scatter
     ``buf_old``), as in the dynamic-relaxation codes used for collapse loads. It removes kinetic
-    energy where the motion reverses and vanishes in steady flow (no unbalanced force), so unlike a
-    viscosity it adds no force that grows with the loading speed. Wall, floor (``j <= j_floor``) and
-    footing nodes are left to their conditions, so the footing reads the grains' unbalanced force."""
+    energy where the motion reverses and would vanish in a steady flow without unbalanced force; in
+    MPM the step-to-step changes are largely noise that grows with the flow's speed, so it acts as a
+    drag that grows with the loading speed (docs/mpm.md, "The creep is not ringing"). Wall, floor
+    (``j <= j_floor``) and footing nodes are left to their conditions, so the footing reads the
+    grains' unbalanced force."""
     nx = grid_mass.shape[0]
     nz = grid_mass.shape[1]
     for i in range(pad + 1, nx - 1 - pad):
@@ -193,13 +204,7 @@ def local_damp(buf_old, grid_mass, grid_vel, alpha, pad, j_floor, foot_i, foot_j
                 continue
             if foot_i[0] <= i <= foot_i[1] and foot_j[0] <= j <= foot_j[1]:
                 continue
-            m = 0.0
-            px = 0.0
-            pz = 0.0
-            for c in range(buf_old.shape[0]):
-                m += buf_old[c, i, j, 0]
-                px += buf_old[c, i, j, 1]
-                pz += buf_old[c, i, j, 2]
+            m, px, pz = chunk_sum(buf_old, i, j)
             if m <= _MASS_EPS:
                 continue
             vx0 = px / m

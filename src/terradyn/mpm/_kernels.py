@@ -378,6 +378,19 @@ def flip_scratch(use, pos, buf, grid_mass):
     )
 
 
+@njit(cache=True, fastmath=True)
+def chunk_sum(buf, i, j):
+    """``(mass, p_x, p_z)`` at node (i, j) summed over the chunk copies of a :func:`p2g` buffer."""
+    m = 0.0
+    px = 0.0
+    pz = 0.0
+    for c in range(buf.shape[0]):
+        m += buf[c, i, j, 0]
+        px += buf[c, i, j, 1]
+        pz += buf[c, i, j, 2]
+    return m, px, pz
+
+
 @njit(cache=True, fastmath=True, parallel=True)
 def grid_change(buf_old, grid_mass, grid_vel, grid_dv):
     """``grid_dv`` (nx, nz, 3): the step's grid velocity change [m/s], ``grid_vel`` less the
@@ -387,13 +400,7 @@ def grid_change(buf_old, grid_mass, grid_vel, grid_dv):
     nz = grid_mass.shape[1]
     for i in prange(nx):
         for j in range(nz):
-            m = 0.0
-            px = 0.0
-            pz = 0.0
-            for c in range(buf_old.shape[0]):
-                m += buf_old[c, i, j, 0]
-                px += buf_old[c, i, j, 1]
-                pz += buf_old[c, i, j, 2]
+            m, px, pz = chunk_sum(buf_old, i, j)
             grid_dv[i, j, 2] = 0.0
             if m <= _MASS_EPS or grid_mass[i, j] <= _MASS_EPS:
                 grid_dv[i, j, 0] = 0.0
