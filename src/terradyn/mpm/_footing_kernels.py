@@ -85,8 +85,8 @@ def advance_footing(
     x (the particle's old velocity plus the interpolated grid velocity change) + (1 - ``flip``) x
     the interpolated grid velocity (0: the APIC update of the solver; positions and affine matrices
     always from the new grid velocity). Used to measure the transfer's numerical dissipation.
-    ``local_damping`` alpha in [0, 1): the rate-independent local damping of quasi-static explicit
-    codes (:func:`local_damp`) at the free nodes; 0 leaves the step unchanged.
+    ``local_damping`` alpha in [0, 1): the local damping of quasi-static explicit codes
+    (:func:`local_damp`) at the free nodes; 0 leaves the step unchanged.
     """
     g_mod = material[0]
     lam = material[1]
