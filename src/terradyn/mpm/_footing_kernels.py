@@ -207,15 +207,6 @@ def local_damp(buf_old, grid_mass, grid_vel, alpha, pad, j_floor, foot_i, foot_j
             m, px, pz = chunk_sum(buf_old, i, j)
             if m <= _MASS_EPS:
                 continue
-            vx0 = px / m
-            vz0 = pz / m
-            dvx = abs(grid_vel[i, j, 0] - vx0)
-            dvz = abs(grid_vel[i, j, 1] - vz0)
-            if vx0 > 0.0:
-                grid_vel[i, j, 0] -= alpha * dvx
-            elif vx0 < 0.0:
-                grid_vel[i, j, 0] += alpha * dvx
-            if vz0 > 0.0:
-                grid_vel[i, j, 1] -= alpha * dvz
-            elif vz0 < 0.0:
-                grid_vel[i, j, 1] += alpha * dvz
+            for a, p_a in ((0, px), (1, pz)):
+                v0 = p_a / m
+                grid_vel[i, j, a] -= alpha * abs(grid_vel[i, j, a] - v0) * np.sign(v0)
