@@ -84,6 +84,23 @@ def test_run_wheel_validates_inputs():
     assert err.value.field == "body"
 
 
+@pytest.mark.parametrize(
+    ("kwargs", "field"),
+    [
+        ({"omega": 1.0, "slip": 0.2, "forward_speed": 0.05}, "slip"),
+        ({"drive_torque": 1.0, "forward_speed": 0.05}, "forward_speed"),
+        ({"omega": 0.0, "forward_speed": float("nan")}, "forward_speed"),
+        ({"omega": 0.0, "forward_speed": 0.05, "drawbar_load": 1.0}, "drawbar_load"),
+        ({"omega": 0.0, "forward_speed": 0.05, "initial_speed": 0.1}, "initial_speed"),
+    ],
+)
+def test_a_towed_run_validates_its_forward_speed(kwargs, field):
+    """A prescribed forward speed replaces the slip: any input that would also set it is refused."""
+    with pytest.raises(InputError) as err:
+        run_wheel(WheelCircular(0.05, 0.1), MODEL, load=5.0, cell_size=0.01, **kwargs)
+    assert err.value.field == field
+
+
 def test_intrusion_result_summary_snapshots_and_progress(tmp_path):
     calls = []
     res = run_intrusion(

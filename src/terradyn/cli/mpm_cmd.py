@@ -387,6 +387,11 @@ def wheel(
     load: float = typer.Option(..., "--load", help="Vertical load W [N]."),
     omega: float | None = typer.Option(None, "--omega", help="Spin rate [rad/s] (or --drive-torque)."),
     slip: float | None = typer.Option(None, "--slip", help="Imposed slip; omit for self-propelled."),
+    forward_speed: float | None = typer.Option(
+        None,
+        "--forward-speed",
+        help="Imposed forward speed [m/s] instead of --slip (towed); with --omega 0 a locked wheel dragged.",
+    ),
     drive_torque: float | None = typer.Option(
         None, "--drive-torque", help="Drive torque [N m] instead of --omega: the spin is free."
     ),
@@ -444,8 +449,9 @@ def wheel(
     out: str | None = OUT,
     plot: str | None = MPMOptions.plot,
 ) -> None:
-    """Wheel on a settled MPM bed: forced slip (--slip), self-propelled at --omega (optionally towing
-    --drawbar-load), or torque-driven (--drive-torque); sinkage, pull, torque and slip."""
+    """Wheel on a settled MPM bed: forced slip (--slip), towed at --forward-speed, self-propelled at
+    --omega (optionally towing --drawbar-load), or torque-driven (--drive-torque); sinkage, pull,
+    torque and slip."""
     from ..mpm import run_wheel
 
     body = _mpm_wheel(shape, width, sizes)
@@ -462,6 +468,7 @@ def wheel(
             load=load,
             omega=omega,
             slip=slip,
+            forward_speed=forward_speed,
             drive_torque=drive_torque,
             max_omega=max_omega,
             drawbar_load=drawbar_load,

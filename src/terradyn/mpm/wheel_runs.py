@@ -146,6 +146,7 @@ class _WheelMotion:
     torque: float
     omega: float
     slip: float | None
+    towed: bool
     spin: float
     v_forward: float
     travel: float
@@ -158,9 +159,32 @@ class _WheelMotion:
 
 
 def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, drive_torque, drawbar_load,
-                  max_omega) -> _WheelMotion:  # fmt: skip
+                  max_omega, forward_speed=None) -> _WheelMotion:  # fmt: skip
     check_positive("load", load)
     torque_mode = drive_torque is not None
+    towed = forward_speed is not None
+    if towed:
+        forward_speed = check_range("forward_speed", forward_speed, -100.0, 100.0, unit="m/s")
+        if omega is None:
+            raise InputError(
+                "forward_speed",
+                forward_speed,
+                "given with a spin rate omega",
+                "omega = 0 tows a locked wheel or a sled",
+            )
+        if slip is not None:
+            raise InputError(
+                "slip", slip, "not given with a forward speed", "give the slip or the forward speed"
+            )
+        if drawbar_load != 0.0:
+            raise InputError(
+                "drawbar_load", drawbar_load, "0 with a forward speed", "the forward speed is imposed"
+            )
+        if drive.initial_speed != 0:
+            raise InputError(
+                "initial_speed", drive.initial_speed, "0 with a forward speed",
+                "the forward speed is imposed",
+            )  # fmt: skip
     if (omega is None) == (drive_torque is None):
         raise InputError("omega", omega, "exactly one of omega or drive_torque", "give one of them")
     torque, omega_cmd = 0.0, 0.0
@@ -194,6 +218,8 @@ def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, dr
     if duration is None:
         steady = not torque_mode and spin != 0
         duration = drive.spin_up + DRIVE_RADIANS / spin if steady else 20.0 * math.sqrt(reach / c.gravity)
+        if towed and spin == 0 and forward_speed != 0:  # a towed body: two reaches of travel, or more
+            duration = max(duration, 2.0 * reach / abs(forward_speed))
     check_positive("duration", duration)
     ramp_end = duration * (1.0 - drive.average_fraction)
     if drive.spin_up > ramp_end * (1.0 + 1e-12):
@@ -206,10 +232,15 @@ def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, dr
     sink_time = 3.0 * math.sqrt(reach / c.gravity) if drive.sink_time is None else drive.sink_time
     if torque_mode:
         v_forward, travel = 0.0, spin * radius * duration
+    elif towed:
+        v_forward = float(forward_speed)
+        travel = abs(v_forward) * duration
     else:
         v_forward = (1.0 - slip) * omega_cmd * radius if slip is not None else omega_cmd * radius
         travel = abs(v_forward) * duration
-    return _WheelMotion(torque_mode, torque, omega_cmd, slip, spin, v_forward, travel, duration, sink_time)
+    return _WheelMotion(
+        torque_mode, torque, omega_cmd, slip, towed, spin, v_forward, travel, duration, sink_time
+    )
 
 
 def run_wheel(
@@ -223,6 +254,7 @@ def run_wheel(
     drawbar_load: float = 0.0,
     max_omega: float = 5.0,
     inertia: float | None = None,
+    forward_speed: float | None = None,
     bed: Bed = Bed(),
     resolution: Resolution = Resolution(),
     outputs: Outputs = Outputs(),
@@ -237,7 +269,10 @@ def run_wheel(
     motion starts at ``drive.initial_speed``). With
     ``slip`` given the forward speed is prescribed, ``vx = (1 - slip) omega r`` (r: nominal outer
     radius), and the vertical motion is free under the load; with ``slip=None`` both translations are
-    free (self-propelled). ``omega = 0`` with ``slip=None`` leaves a body resting under its load. The
+    free (self-propelled). ``omega = 0`` with ``slip=None`` leaves a body resting under its load. With
+    ``forward_speed`` [m/s] instead of ``slip`` the forward speed is prescribed as given (towed): with
+    ``omega = 0`` a locked wheel, or any body such as a sled, dragged over the bed (default duration
+    ``max(20 sqrt(reach / g), 2 reach / |forward_speed|)``). The
     default duration is ``spin_up + 4.5 / |omega|`` (:data:`DRIVE_RADIANS`): starting from the pit it sank
     into, a wheel's pull settles after about 2.25 rad of rotation (measured for a 0.13 m wheel on MS at
     slip 0.3), so the averaged last half of the drive is steady.
@@ -277,9 +312,8 @@ def run_wheel(
     radius = _nominal_radius(wheel)
     seg = body_segments(eff, h)
     reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
-    m = _wheel_motion(
-        c, specs["drive"], radius, reach, load, omega, slip, drive_torque, drawbar_load, max_omega
-    )
+    args = (radius, reach, load, omega, slip, drive_torque, drawbar_load, max_omega, forward_speed)
+    m = _wheel_motion(c, specs["drive"], *args)
     grid, pose0 = _wheel_bed(seg, c, m.travel, m.direction)
     v_max = m.spin * reach + (m.spin * radius if m.torque_mode else abs(m.v_forward)) + math.sqrt(2 * g * h)
     dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=v_max)
@@ -290,12 +324,13 @@ def run_wheel(
     state = _body_state(c, seg, pose0, np.zeros(3, dtype=np.bool_), mass, load_w, w, inertia_w)
     settle_phases, settle = _settle_phases(c, grid.depth, dt)
     damping = c.model.wave_speed() / grid.depth
-    drive_twist = (m.v_forward if m.slip is not None else specs["drive"].initial_speed, 0.0, m.omega)
+    imposed = m.slip is not None or m.towed
+    drive_twist = (m.v_forward if imposed else specs["drive"].initial_speed, 0.0, m.omega)
     phases = [
         *settle_phases,
         Phase("sink", max(1, round(m.sink_time / dt)), damping=damping, free=(False, True, False)),
         Phase("drive", max(1, round(m.duration / dt)), twist=drive_twist,
-              free=(m.slip is None, True, m.torque_mode), ramp_steps=round(specs["drive"].spin_up / dt)),
+              free=(not imposed, True, m.torque_mode), ramp_steps=round(specs["drive"].spin_up / dt)),
     ]  # fmt: skip
     every = _output_every(outputs, dt, None, m.duration / 200.0, m.duration / 20.0)
     named = dict(
@@ -303,6 +338,7 @@ def run_wheel(
         load=load,
         omega=omega,
         slip=slip,
+        **({"forward_speed": m.v_forward} if m.towed else {}),
         drive_torque=drive_torque,
         drawbar_load=drawbar_load,
         max_omega=max_omega if m.torque_mode else None,
@@ -325,7 +361,6 @@ def run_wheel(
     if m.torque_mode:
         summary["applied_torque_Nm"] = m.torque
     meta = _metadata(runner, c.model, wheel, eff, wall)
-    meta["mode"] = (
-        "torque-driven" if m.torque_mode else "forced-slip" if m.slip is not None else "self-propelled"
-    )
+    modes = ((m.torque_mode, "torque-driven"), (m.slip is not None, "forced-slip"), (m.towed, "towed"))
+    meta["mode"] = next((name for on, name in modes if on), "self-propelled")
     return WheelResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())
