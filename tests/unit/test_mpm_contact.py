@@ -55,13 +55,16 @@ def test_body_particles_normals_equal_reference():
     assert np.all(phi >= 0)
 
 
+@pytest.mark.parametrize("gap_check", [False, True])
 @pytest.mark.parametrize("seed", [0, 1])
-def test_p2g_sides_equals_reference(seed):
+def test_p2g_sides_equals_reference(seed, gap_check):
     pos, vel, aff, stress, mass, vol = particles(seed)
     geo, near, n_near, node, box = geometry(pos)
     side = np.zeros((*SHAPE, 9))
-    K.p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, X0, Z0, H, 1e-4, side)
-    ref = p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, X0, Z0, H, 1e-4)
+    K.p2g_sides(
+        pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, X0, Z0, H, 1e-4, side, gap_check
+    )
+    ref = p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, X0, Z0, H, 1e-4, gap_check)
     np.testing.assert_allclose(side, ref, rtol=1e-10, atol=1e-12)
     # both sides of the thin plate are populated on the band nodes
     assert (side[..., 0] > 0).sum() > 4
@@ -260,3 +263,27 @@ def test_a_point_on_a_zero_thickness_plate_has_a_fixed_normal():
     seg = body_segments(Plate(0.05, 0.1), 0.01)
     phi, nx, nz = K.polygon_sdf(0.0101, 1e-19, seg)
     assert (phi, nx, nz) == (0.0, 0.0, 1.0)
+
+
+def test_the_gap_check_waits_for_the_grains_to_reach_the_body():
+    """One point 0.4 cells below a thick block (its side h / 2, so its grains stop 0.15 cells short):
+    under the node test the node row inside the block that the point's stencil reaches is in contact
+    at once; under the gap test no node is until the point is within half its side of the face."""
+    seg = np.array([[-4 * H, 0.0, 4 * H, 0.0], [4 * H, 0.0, 4 * H, 3 * H],
+                    [4 * H, 3 * H, -4 * H, 3 * H], [-4 * H, 3 * H, -4 * H, 0.0]])  # fmt: skip
+    pose = np.array([X0 + 6.25 * H, Z0 + 6.0 * H, 0.0])  # base on the node row j = 6
+
+    def gap_sums(depth, gap_check):
+        pos = np.array([[pose[0], pose[1] - depth * H]])
+        vel, aff = np.zeros((1, 2)), np.zeros((1, 2, 2))
+        stress, mass, vol = np.zeros((1, 4)), np.ones(1), np.full(1, (0.5 * H) ** 2)
+        geo, near, n_near, node, box = geometry(pos, seg, pose)
+        side = np.zeros((*SHAPE, 9))
+        K.p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, X0, Z0, H, 1e-4, side,
+                    gap_check)  # fmt: skip
+        reached = (node[..., 2] < 1e299) & (side[..., 3:5] != 0).any(axis=-1)
+        return side[..., 5][reached]
+
+    assert np.any(gap_sums(0.4, False) < 0)  # nodes inside the block: contact at a distance
+    assert np.all(gap_sums(0.4, True) > 0)  # the grains are 0.15 cells away: none
+    assert np.all(gap_sums(0.2, True) <= 0)  # within half the point's side: every node

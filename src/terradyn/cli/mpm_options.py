@@ -28,7 +28,8 @@ class MPMOptions:
     contact = typer.Option(
         "two-field",
         "--contact",
-        help="Body-grain grid contact: two-field (default) or the legacy cover.",
+        help="Body-grain grid contact: two-field (default), two-field-gap (contact once the grains reach "
+        "the body, docs/mpm.md 'Contact at a distance') or the legacy cover.",
     )
     checkpoint = typer.Option(
         None, "--checkpoint", help="Checkpoint file (.npz), written atomically, on Ctrl-C and at the end."

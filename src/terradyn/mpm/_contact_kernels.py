@@ -383,14 +383,19 @@ def body_nodes(x0, z0, h, seg, pose, reach, band, node, old_box):
 
 
 @njit(cache=True, fastmath=True)
-def p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0, z0, h, dt, side):
+def p2g_sides(
+    pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0, z0, h, dt, side, gap_check=False
+):
     """Particle -> grid scatter of the two grain fields on band nodes (after :func:`p2g`).
 
     ``side`` (nx, nz, 9) is zeroed on the node ``box`` of :func:`body_nodes` (which holds every band
     node), then receives on band nodes: the far-side field's mass [kg/m] and
     momentum (x, z) [kg/s] as :func:`p2g` computes them (internal-force impulse included), then for the
-    near-side and the far-side field in turn ``sum w m n_p`` (x, z) [kg/m] and
-    ``sum w m ((x_i - x_p) . n_p + phi_p)`` [kg]. Only the ``n_near`` particles ``near`` (from
+    near-side and the far-side field in turn ``sum w m n_p`` (x, z) [kg/m] and the gap sum [kg]:
+    ``sum w m ((x_i - x_p) . n_p + phi_p)`` (the node's height above the body surface: a node behind
+    it is in contact), or with ``gap_check`` ``sum w m (phi_p - sqrt(V_p) / 2)`` (the mean gap between
+    the field's grains, each reaching half its side beyond its centre, and the body: in contact once
+    the grains reach the body, wherever the node lies). Only the ``n_near`` particles ``near`` (from
     :func:`body_particles`, whose ``geo`` they use) contribute.
     """
     side[box[0] : box[1] + 1, box[2] : box[3] + 1, :] = 0.0
@@ -429,7 +434,10 @@ def p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0
                     o = 6
                 side[i, j, o] += wm * npx
                 side[i, j, o + 1] += wm * npz
-                side[i, j, o + 2] += wm * (dx * npx + dz * npz + phi)
+                if gap_check:
+                    side[i, j, o + 2] += wm * (phi - 0.5 * math.sqrt(vol[p]))
+                else:
+                    side[i, j, o + 2] += wm * (dx * npx + dz * npz + phi)
 
 
 #: Relative rounding of a field's gap sum (kg m), per kg of field mass and metre of cell size.

@@ -44,6 +44,7 @@ __all__ = [
     "BAND_CELLS",
     "CONTACT_COVER",
     "CONTACT_SIDES",
+    "CONTACT_SIDES_GAP",
     "advance",
     "body_contact",
     "body_contact_sides",
@@ -361,6 +362,8 @@ def patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch
 #: velocity, plus a particle projection (legacy); or the two-field scheme of :func:`body_contact_sides`.
 CONTACT_COVER = 0
 CONTACT_SIDES = 1
+#: two-field contact decided by the grains' gap to the body (:func:`p2g_sides`, ``gap_check``)
+CONTACT_SIDES_GAP = 2
 
 
 @njit(cache=True)
@@ -505,7 +508,8 @@ def advance(
     in place; ``free`` (3,) flags x/z translation and the spin as free (else prescribed by ``twist``),
     with mass ``body_mass`` [kg/m], moment of inertia ``body_inertia`` [kg m^2/m] and external load
     ``load`` (3,) = force [N/m] (gravity included by the caller) and torque about +y [N m/m].
-    ``contact`` is :data:`CONTACT_SIDES` (two grain fields near the body, thin bodies allowed) or
+    ``contact`` is :data:`CONTACT_SIDES` (two grain fields near the body, thin bodies allowed),
+    :data:`CONTACT_SIDES_GAP` (the same, contact decided by the grains' gap) or
     :data:`CONTACT_COVER`; ``reach`` [m] bounds the nodes searched around the body origin.
     ``forces`` (n_steps, 3) receives the grain force and torque on the body each step [N/m, N m/m].
     Scratch: ``scratch_grid`` (nx, nz, 14) (far-side velocity, band-node geometry, two-field sums),
@@ -518,7 +522,8 @@ def advance(
     lam = material[1]
     dilatancy = material[8] if material.shape[0] > 8 else 0.0
     loose_density = material[9] if material.shape[0] > 9 else material[7]
-    sides = has_body and contact == CONTACT_SIDES
+    sides = has_body and (contact == CONTACT_SIDES or contact == CONTACT_SIDES_GAP)
+    gap_check = contact == CONTACT_SIDES_GAP
     grid_vel_m = scratch_grid[:, :, 0:2]
     node = scratch_grid[:, :, 2:5]
     side = scratch_grid[:, :, 5:14]
@@ -549,7 +554,9 @@ def advance(
             pos_old[:] = pos
         p2g(pos, vel, aff, stress, mass, vol, x0, z0, h, dt, buf)
         if sides:
-            p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0, z0, h, dt, side)
+            p2g_sides(
+                pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0, z0, h, dt, side, gap_check
+            )
         # 2. grid update: momentum, gravity, walls, body contact; the body moves
         grid_update(buf, grid_mass, grid_vel, dt, gravity, damping, pad, wall_kind, wall_mu)
         fx = 0.0

@@ -158,7 +158,7 @@ def polygon_sdf_normals_reference(points, seg):
     return phi, n
 
 
-def p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, x0, z0, h, dt):
+def p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, x0, z0, h, dt, gap_check=False):
     """The two-field sums ``side`` (nx, nz, 9) of :func:`~terradyn.mpm._kernels.p2g_sides` for the
     particles with a body normal in ``geo`` (N, 3) and the band nodes of ``node`` (nx, nz, 3)."""
     near = np.flatnonzero((geo[:, 0] != 0) | (geo[:, 1] != 0))
@@ -174,7 +174,10 @@ def p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, x0, z0, h, 
     sig[:, 0, 1] = sig[:, 1, 0] = stress[near, 2]
     vnode = vel[near, None, None, :] + np.einsum("pab,pijb->pija", aff[near], off)
     mom = wm[..., None] * vnode - dt * vol[near, None, None, None] * np.einsum("pab,pijb->pija", sig, grad)
-    gap = np.einsum("pija,pija->pij", off, np.broadcast_to(npn, off.shape)) + geo[near, 2, None, None]
+    if gap_check:  # the grains' own gap: distance minus half the point's side
+        gap = np.broadcast_to((geo[near, 2] - 0.5 * np.sqrt(vol[near]))[:, None, None], wm.shape)
+    else:  # the node's height above the body surface, seen from each point
+        gap = np.einsum("pija,pija->pij", off, np.broadcast_to(npn, off.shape)) + geo[near, 2, None, None]
     side = np.zeros((*node.shape[:2], 9))
     for sel, o in ((band & ~far, 3), (far, 6)):
         if o == 6:

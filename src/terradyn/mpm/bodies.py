@@ -12,6 +12,12 @@ A body therefore needs no thickness: a zero-thickness :class:`Plate` is a segmen
 and composite and placed bodies take the same path as bare ones. The impulse taken from the grains
 is the force on the body (two-way coupling).
 
+``"two-field-gap"`` is the same scheme with another contact test: a field is in contact once its
+grains (each reaching half its side beyond its centre) reach the body, rather than when the node
+lies behind the body's surface. Under the node test a node inside the body holds the grains in its
+stencil at the body's velocity while they are still up to a cell away, so a body compresses the top
+grains before touching them and tears them off the grains below (docs/mpm.md "Contact at a distance").
+
 ``"cover"`` is the earlier scheme, kept for comparison: nodes inside the outline take the body
 velocity, particles inside are pushed out, and a bare :class:`Plate` is thickened to
 :data:`PLATE_MIN_CELLS` cells (thinner bands leak grains; other zero-thickness bodies get no force).
@@ -49,19 +55,21 @@ class ContactScheme(str, Enum):
     """How a rigid body and the grains interact on the grid (see the module docstring)."""
 
     TWO_FIELD = "two-field"
+    TWO_FIELD_GAP = "two-field-gap"
     COVER = "cover"
 
     @property
     def code(self) -> int:
-        """The kernel code (:data:`terradyn.mpm._kernels.CONTACT_SIDES` / ``CONTACT_COVER``)."""
-        return 1 if self is ContactScheme.TWO_FIELD else 0
+        """The kernel code (:data:`terradyn.mpm._kernels.CONTACT_SIDES`, ``CONTACT_SIDES_GAP`` or
+        ``CONTACT_COVER``)."""
+        return {ContactScheme.COVER: 0, ContactScheme.TWO_FIELD: 1, ContactScheme.TWO_FIELD_GAP: 2}[self]
 
     @classmethod
     def coerce(cls, value: ContactScheme | str) -> ContactScheme:
         try:
             return cls(value)
         except ValueError:
-            raise InputError("contact", value, "'two-field' or 'cover'") from None
+            raise InputError("contact", value, "'two-field', 'two-field-gap' or 'cover'") from None
 
 
 class DofMode(str, Enum):

@@ -181,7 +181,9 @@ class Resolution(_Spec):
         0.05 m/s: +6 % at 0.15, +26 % at 0.075; 12 across: +0.9 % at 0.15; docs/mpm.md "Time step
         and loading speed").
     contact : grid contact scheme (:class:`~terradyn.mpm.bodies.ContactScheme`), ``"two-field"``
-        (bodies need no thickness) or the legacy ``"cover"``.
+        (bodies need no thickness; a node behind the body surface is in contact), ``"two-field-gap"``
+        (the same, in contact once the grains themselves reach the body: no compression at a distance,
+        docs/mpm.md "Contact at a distance") or the legacy ``"cover"``.
     min_cells_across : the fewest cells accepted across the body's diameter (None: 6 for intrusions,
         8 for wheels).
     volumetric : the velocity divergence each point's volume and stress take: ``"point"`` (default)
