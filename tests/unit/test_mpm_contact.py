@@ -60,12 +60,17 @@ def test_body_particles_normals_equal_reference():
 def test_p2g_sides_equals_reference(seed, gap_check):
     pos, vel, aff, stress, mass, vol = particles(seed)
     geo, near, n_near, node, box = geometry(pos)
-    side = np.zeros((*SHAPE, 9))
+    side = np.zeros((*SHAPE, 11 if gap_check else 9))
     K.p2g_sides(
         pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, X0, Z0, H, 1e-4, side, gap_check
     )
     ref = p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, X0, Z0, H, 1e-4, gap_check)
-    np.testing.assert_allclose(side, ref, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(side[..., :9], ref[..., :9], rtol=1e-10, atol=1e-12)
+    if gap_check:  # the nearest grain of each field, where it has one
+        has = ref[..., 9:] < 1e299
+        assert has[..., 0].sum() > 4 and has[..., 1].sum() > 4
+        np.testing.assert_allclose(side[..., 9:][has], ref[..., 9:][has], rtol=1e-12, atol=1e-15)
+        assert np.all((side[..., 9:][~has] >= 1e299) | (side[..., 9:][~has] == 0))  # none, or outside the box
     # both sides of the thin plate are populated on the band nodes
     assert (side[..., 0] > 0).sum() > 4
     assert (side[..., 3:5] != 0).any(axis=-1).sum() > 4
@@ -266,24 +271,33 @@ def test_a_point_on_a_zero_thickness_plate_has_a_fixed_normal():
 
 
 def test_the_gap_check_waits_for_the_grains_to_reach_the_body():
-    """One point 0.4 cells below a thick block (its side h / 2, so its grains stop 0.15 cells short):
-    under the node test the node row inside the block that the point's stencil reaches is in contact
-    at once; under the gap test no node is until the point is within half its side of the face."""
+    """One point 0.4 cells below a thick block (its side h / 2, so it stops 0.15 cells short): under
+    the node test the node row inside the block that its stencil reaches is in contact at once; under
+    the gap check no node is until the point is within half its side of the face, and then the nodes
+    within half a cell of the face or behind it are (the row a cell out is not)."""
     seg = np.array([[-4 * H, 0.0, 4 * H, 0.0], [4 * H, 0.0, 4 * H, 3 * H],
                     [4 * H, 3 * H, -4 * H, 3 * H], [-4 * H, 3 * H, -4 * H, 0.0]])  # fmt: skip
     pose = np.array([X0 + 6.25 * H, Z0 + 6.0 * H, 0.0])  # base on the node row j = 6
 
-    def gap_sums(depth, gap_check):
+    def contact_rows(depth, gap_check):
         pos = np.array([[pose[0], pose[1] - depth * H]])
         vel, aff = np.zeros((1, 2)), np.zeros((1, 2, 2))
         stress, mass, vol = np.zeros((1, 4)), np.ones(1), np.full(1, (0.5 * H) ** 2)
         geo, near, n_near, node, box = geometry(pos, seg, pose)
-        side = np.zeros((*SHAPE, 9))
+        side = np.zeros((*SHAPE, 11))
         K.p2g_sides(pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, X0, Z0, H, 1e-4, side,
                     gap_check)  # fmt: skip
         reached = (node[..., 2] < 1e299) & (side[..., 3:5] != 0).any(axis=-1)
-        return side[..., 5][reached]
+        m = np.where(reached, np.abs(side[..., 3]) + np.abs(side[..., 4]), 1.0)  # the field's mass (|n| = 1)
+        height = side[..., 5] / m  # the node's height above the face
+        if gap_check:
+            touching = reached & (side[..., 9] <= 0) & (height <= 0.5 * H)
+        else:
+            touching = reached & (height <= 1e-9 * H)
+        return sorted({int(j) for j in np.argwhere(touching)[:, 1]}), sorted(
+            {int(j) for j in np.argwhere(reached)[:, 1]}
+        )
 
-    assert np.any(gap_sums(0.4, False) < 0)  # nodes inside the block: contact at a distance
-    assert np.all(gap_sums(0.4, True) > 0)  # the grains are 0.15 cells away: none
-    assert np.all(gap_sums(0.2, True) <= 0)  # within half the point's side: every node
+    assert contact_rows(0.4, False) == ([6, 7], [5, 6, 7])  # row 7 is inside the block: contact at a distance
+    assert contact_rows(0.4, True)[0] == []  # the grain is 0.15 cells away: none
+    assert contact_rows(0.2, True) == ([6, 7], [5, 6, 7])  # touching: the face row and the one behind it

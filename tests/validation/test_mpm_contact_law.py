@@ -54,9 +54,10 @@ def _top_density(res, h):
 )
 def test_a_resting_sled_leaves_the_grains_under_it_dense_only_with_the_gap_test(contact, low, high):
     """The sled dropped from half a cell above the bed and left to rest. Under the node test the
-    block's inner nodes hold the top grains while they are still a cell away: they are compressed and
-    torn off the grains below before the sled lands, and the layer under it ends 14 % below the bed's
-    density at 8 mm cells (docs/mpm.md "Contact at a distance"); under the gap test it stays dense."""
+    sled's inner nodes hold the top grains while they are still most of a cell away: the first row is
+    pulled up and compressed, and torn off the second, which loosens below the critical density and
+    carries nothing (docs/mpm.md "Contact at a distance"; at 10 mm cells the cell under the base ends
+    at 0.857 of the bed's density). Under the gap check both rows carry the load (0.999)."""
     h = 0.01
     res = _sled(0.0, 0.0, h=h, duration=0.1, contact=contact)
     bed = float(np.median(res.final_particles["density"]))

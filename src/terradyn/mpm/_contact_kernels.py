@@ -391,14 +391,17 @@ def p2g_sides(
     ``side`` (nx, nz, 9) is zeroed on the node ``box`` of :func:`body_nodes` (which holds every band
     node), then receives on band nodes: the far-side field's mass [kg/m] and
     momentum (x, z) [kg/s] as :func:`p2g` computes them (internal-force impulse included), then for the
-    near-side and the far-side field in turn ``sum w m n_p`` (x, z) [kg/m] and the gap sum [kg]:
-    ``sum w m ((x_i - x_p) . n_p + phi_p)`` (the node's height above the body surface: a node behind
-    it is in contact), or with ``gap_check`` ``sum w m (phi_p - sqrt(V_p) / 2)`` (the mean gap between
-    the field's grains, each reaching half its side beyond its centre, and the body: in contact once
-    the grains reach the body, wherever the node lies). Only the ``n_near`` particles ``near`` (from
-    :func:`body_particles`, whose ``geo`` they use) contribute.
+    near-side and the far-side field in turn ``sum w m n_p`` (x, z) [kg/m] and the gap sum
+    ``sum w m ((x_i - x_p) . n_p + phi_p)`` [kg] (its ratio to the field's mass is the node's height above
+    the body surface). With ``gap_check`` (and ``side`` (nx, nz, 11)) slots 9 and 10 receive, for the
+    near and the far field, the smallest gap ``phi_p - sqrt(V_p) / 2`` [m] between one of its grains
+    (reaching half its side beyond its centre) and the body (``_FAR`` where the field has no grain).
+    Only the ``n_near`` particles ``near`` (from :func:`body_particles`, whose ``geo`` they use)
+    contribute.
     """
-    side[box[0] : box[1] + 1, box[2] : box[3] + 1, :] = 0.0
+    side[box[0] : box[1] + 1, box[2] : box[3] + 1, :9] = 0.0
+    if gap_check:
+        side[box[0] : box[1] + 1, box[2] : box[3] + 1, 9:11] = _FAR
     inv_h = 1.0 / h
     wx = np.empty(3)
     wz = np.empty(3)
@@ -434,10 +437,10 @@ def p2g_sides(
                     o = 6
                 side[i, j, o] += wm * npx
                 side[i, j, o + 1] += wm * npz
+                side[i, j, o + 2] += wm * (dx * npx + dz * npz + phi)
                 if gap_check:
-                    side[i, j, o + 2] += wm * (phi - 0.5 * math.sqrt(vol[p]))
-                else:
-                    side[i, j, o + 2] += wm * (dx * npx + dz * npz + phi)
+                    g = 9 if o == 3 else 10
+                    side[i, j, g] = min(side[i, j, g], phi - 0.5 * math.sqrt(vol[p]))
 
 
 #: Relative rounding of a field's gap sum (kg m), per kg of field mass and metre of cell size.
@@ -458,6 +461,16 @@ def _contact_field(vx, vz, sx, sz, gap, tol, ubx, ubz, mu):
         return vx, vz
     ux, uz = _coulomb(vx - ubx, vz - ubz, sx / ns, sz / ns, mu)
     return ubx + ux, ubz + uz
+
+
+@njit(cache=True, fastmath=True, inline="always")
+def _touching(gap_sum, nearest, mass, h):
+    """The gap tolerance that puts a field in contact under the gap check: a value above its gap sum
+    when the node is within half a cell of the surface (or behind it) and a grain reaches the body,
+    else one below it (``-_FAR``)."""
+    if nearest <= 0.0 and gap_sum <= (0.5 + _GAP_TOL) * h * mass:
+        return abs(gap_sum) + _GAP_TOL * h * mass
+    return -_FAR
 
 
 @njit(cache=True, fastmath=True)
@@ -481,6 +494,7 @@ def body_contact_sides(
     pose,
     twist,
     mu,
+    gap_check=False,
 ):
     """Two-field frictional contact on the band nodes; returns the force on the body.
 
@@ -490,6 +504,10 @@ def body_contact_sides(
     (``pose``, ``twist``) with Coulomb coefficient ``mu``. The near-side velocity goes to ``grid_vel``,
     the far-side one to ``grid_vel_m`` (nx, nz, 2) [m/s]. Returns ``(f_x, f_z, torque_y)``
     [N/m, N m/m] on the body about its origin: ``-sum_fields m_f dv_f / dt``.
+
+    A field is in contact where the node lies behind the body surface (its gap sum at most zero, to
+    rounding); with ``gap_check`` where the node lies within half a cell of the surface or behind it
+    and one of the field's grains reaches the body (``side`` slots 9 / 10 at most zero).
     """
     nchunk = buf.shape[0]
     nx = grid_mass.shape[0]
@@ -517,13 +535,18 @@ def body_contact_sides(
             m_near = m - m_far
             jx = 0.0
             jz = 0.0
+            reach_near = _GAP_TOL * h * m_near
+            reach_far = _GAP_TOL * h * m_far
+            if gap_check:  # gap sums shifted so that the contact test below reads "in contact"
+                reach_near = _touching(side[i, j, 5], side[i, j, 9], m_near, h)
+                reach_far = _touching(side[i, j, 8], side[i, j, 10], m_far, h)
             if m_near > 1e-9 * m:
                 vx, vz = _node_velocity(
                     m_near, px - side[i, j, 1], pz - side[i, j, 2], dt, gravity, keep, i, j, nx, pad,
                     wall_kind, wall_mu,
                 )  # fmt: skip
                 nvx, nvz = _contact_field(
-                    vx, vz, side[i, j, 3], side[i, j, 4], side[i, j, 5], _GAP_TOL * h * m_near, ubx, ubz, mu
+                    vx, vz, side[i, j, 3], side[i, j, 4], side[i, j, 5], reach_near, ubx, ubz, mu
                 )
                 grid_vel[i, j, 0] = nvx
                 grid_vel[i, j, 1] = nvz
@@ -534,7 +557,7 @@ def body_contact_sides(
                     m_far, side[i, j, 1], side[i, j, 2], dt, gravity, keep, i, j, nx, pad, wall_kind, wall_mu
                 )
                 nvx, nvz = _contact_field(
-                    vx, vz, side[i, j, 6], side[i, j, 7], side[i, j, 8], _GAP_TOL * h * m_far, ubx, ubz, mu
+                    vx, vz, side[i, j, 6], side[i, j, 7], side[i, j, 8], reach_far, ubx, ubz, mu
                 )
                 grid_vel_m[i, j, 0] = nvx
                 grid_vel_m[i, j, 1] = nvz

@@ -512,7 +512,7 @@ def advance(
     :data:`CONTACT_SIDES_GAP` (the same, contact decided by the grains' gap) or
     :data:`CONTACT_COVER`; ``reach`` [m] bounds the nodes searched around the body origin.
     ``forces`` (n_steps, 3) receives the grain force and torque on the body each step [N/m, N m/m].
-    Scratch: ``scratch_grid`` (nx, nz, 14) (far-side velocity, band-node geometry, two-field sums),
+    Scratch: ``scratch_grid`` (nx, nz, 16) (far-side velocity, band-node geometry, two-field sums),
     ``scratch_particles`` (N, 3) and ``near`` (N,) int64 (see :func:`body_particles`).
     ``averaged`` selects the patch-averaged velocity divergence (:func:`patch_divergence`).
     ``flip`` in [0, 1] blends the velocity update towards FLIP (:func:`flip_blend`), except for the
@@ -526,7 +526,7 @@ def advance(
     gap_check = contact == CONTACT_SIDES_GAP
     grid_vel_m = scratch_grid[:, :, 0:2]
     node = scratch_grid[:, :, 2:5]
-    side = scratch_grid[:, :, 5:14]
+    side = scratch_grid[:, :, 5:16]
     geo = scratch_particles
     pose_old = np.empty(3)
     band = BAND_CELLS * h
@@ -566,7 +566,7 @@ def advance(
             if sides:
                 fx, fz, ty = body_contact_sides(
                     buf, grid_mass, grid_vel, grid_vel_m, side, node, box, x0, z0, h, dt, gravity,
-                    damping, pad, wall_kind, wall_mu, pose, twist, body_mu,
+                    damping, pad, wall_kind, wall_mu, pose, twist, body_mu, gap_check,
                 )  # fmt: skip
             else:
                 fx, fz, ty = body_contact(
@@ -648,8 +648,8 @@ def make_buffer(nx: int, nz: int, n_particles: int) -> np.ndarray:
 
 
 def make_scratch(nx: int, nz: int, n_particles: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Scratch arrays of the two-field contact for :func:`advance`: grid (nx, nz, 14), particles
+    """Scratch arrays of the two-field contact for :func:`advance`: grid (nx, nz, 16), particles
     (N, 3) and the near-particle index list (N,)."""
-    grid = np.zeros((nx, nz, 14))
+    grid = np.zeros((nx, nz, 16))
     grid[:, :, 4] = _FAR
     return grid, np.zeros((n_particles, 3)), np.zeros(n_particles, dtype=np.int64)

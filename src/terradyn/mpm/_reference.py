@@ -174,11 +174,11 @@ def p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, x0, z0, h, 
     sig[:, 0, 1] = sig[:, 1, 0] = stress[near, 2]
     vnode = vel[near, None, None, :] + np.einsum("pab,pijb->pija", aff[near], off)
     mom = wm[..., None] * vnode - dt * vol[near, None, None, None] * np.einsum("pab,pijb->pija", sig, grad)
-    if gap_check:  # the grains' own gap: distance minus half the point's side
-        gap = np.broadcast_to((geo[near, 2] - 0.5 * np.sqrt(vol[near]))[:, None, None], wm.shape)
-    else:  # the node's height above the body surface, seen from each point
-        gap = np.einsum("pija,pija->pij", off, np.broadcast_to(npn, off.shape)) + geo[near, 2, None, None]
-    side = np.zeros((*node.shape[:2], 9))
+    gap = np.einsum("pija,pija->pij", off, np.broadcast_to(npn, off.shape)) + geo[near, 2, None, None]
+    side = np.zeros((*node.shape[:2], 11 if gap_check else 9))
+    if gap_check:  # the smallest gap of a field's grains (each half its side beyond its centre)
+        side[..., 9:11] = 1e300
+        reach = np.broadcast_to((geo[near, 2] - 0.5 * np.sqrt(vol[near]))[:, None, None], wm.shape)
     for sel, o in ((band & ~far, 3), (far, 6)):
         if o == 6:
             np.add.at(side[..., 0], (ii[sel], jj[sel]), wm[sel])
@@ -188,6 +188,8 @@ def p2g_sides_reference(pos, vel, aff, stress, mass, vol, geo, node, x0, z0, h, 
         np.add.at(side[..., o], (ii[sel], jj[sel]), nw[sel][:, 0])
         np.add.at(side[..., o + 1], (ii[sel], jj[sel]), nw[sel][:, 1])
         np.add.at(side[..., o + 2], (ii[sel], jj[sel]), (wm * gap)[sel])
+        if gap_check:
+            np.minimum.at(side[..., 9 if o == 3 else 10], (ii[sel], jj[sel]), reach[sel])
     return side
 
 
