@@ -252,6 +252,14 @@ def test_snapshots_of_a_stopped_run_go_unless_it_can_resume(run_cli, tmp_path, m
         assert not snaps.exists() and "nothing saved" in err
 
 
+def _main_with_run(monkeypatch, app, run) -> int:
+    """Exit code of ``app.main`` with its command replaced by ``run(args) -> code``."""
+    monkeypatch.setattr(app, "_run", run)
+    with pytest.raises(SystemExit) as done:
+        app.main(["materials", "list"])
+    return done.value.code
+
+
 def test_an_interrupt_swallowed_on_the_way_still_ends_the_run_as_interrupted(tmp_path, monkeypatch, capsys):
     """A Ctrl-C raised inside a callback from C code is printed as "Exception ignored" and dropped
     (measured: numba's cache callback while a kernel compiles, 0.4 s after start); the handler's
@@ -272,10 +280,7 @@ def test_an_interrupt_swallowed_on_the_way_still_ends_the_run_as_interrupted(tmp
         note_interrupt()
         return 0
 
-    monkeypatch.setattr(app, "_run", run_and_swallow)
-    with pytest.raises(SystemExit) as done:
-        app.main(["materials", "list"])
-    assert done.value.code == 130
+    assert _main_with_run(monkeypatch, app, run_and_swallow) == 130
     assert capsys.readouterr().err == "terradyn: interrupted\n"
     reset_interrupts()
 
@@ -305,10 +310,7 @@ def test_an_interrupt_inside_a_destructor_prints_only_the_one_line(monkeypatch, 
         gc.collect()
         return 0
 
-    monkeypatch.setattr(app, "_run", run_and_collect)
-    with pytest.raises(SystemExit) as done:
-        app.main(["materials", "list"])
-    assert done.value.code == 130
+    assert _main_with_run(monkeypatch, app, run_and_collect) == 130
     assert capsys.readouterr().err == "terradyn: interrupted\n"
     reset_interrupts()
 
@@ -319,9 +321,6 @@ def test_an_interrupt_inside_a_destructor_prints_only_the_one_line(monkeypatch, 
         Broken()
         return 0
 
-    monkeypatch.setattr(app, "_run", run_with_fault)
-    with pytest.raises(SystemExit) as done:
-        app.main(["materials", "list"])
-    assert done.value.code == 0 and capsys.readouterr().err == ""
+    assert _main_with_run(monkeypatch, app, run_with_fault) == 0 and capsys.readouterr().err == ""
     assert [type(u.exc_value) for u in seen] == [ValueError]
     assert sys.unraisablehook == seen.append  # the command line's hook is gone after the run
