@@ -448,29 +448,30 @@ _GAP_TOL = 1e-9
 
 
 @njit(cache=True, fastmath=True, inline="always")
-def _contact_field(vx, vz, sx, sz, gap, tol, ubx, ubz, mu):
-    """New velocity of one grain field: body contact if its gap sum ``gap`` <= ``tol`` (see above).
+def _in_contact(gap_sum, nearest, mass, h, gap_check):
+    """Whether a grain field of ``mass`` is in contact with the body at a band node.
 
-    ``tol`` > 0 is rounding: a node exactly on a face (a face aligned with a grid line) has a gap
-    sum of zero to rounding, whose sign must not decide the contact (nor differ between mirror
-    images)."""
-    if gap > tol:
+    Node test: its gap sum is at most zero, to a rounding tolerance (a node exactly on a face aligned
+    with a grid line has a gap sum of zero to rounding, whose sign must not decide the contact nor
+    differ between mirror images). Gap check: the node lies within half a cell of the surface or
+    behind it and the field's nearest grain reaches the body (``nearest`` <= 0)."""
+    tol = _GAP_TOL * h * mass
+    if gap_check:
+        return nearest <= 0.0 and gap_sum <= 0.5 * h * mass + tol
+    return gap_sum <= tol
+
+
+@njit(cache=True, fastmath=True, inline="always")
+def _contact_field(vx, vz, sx, sz, touching, ubx, ubz, mu):
+    """New velocity of one grain field: body contact (normal ``(sx, sz)`` normalised, Coulomb
+    friction ``mu``) if ``touching`` (:func:`_in_contact`), else unchanged."""
+    if not touching:
         return vx, vz
     ns = math.sqrt(sx * sx + sz * sz)
     if ns <= 0.0:
         return vx, vz
     ux, uz = _coulomb(vx - ubx, vz - ubz, sx / ns, sz / ns, mu)
     return ubx + ux, ubz + uz
-
-
-@njit(cache=True, fastmath=True, inline="always")
-def _touching(gap_sum, nearest, mass, h):
-    """The gap tolerance that puts a field in contact under the gap check: a value above its gap sum
-    when the node is within half a cell of the surface (or behind it) and a grain reaches the body,
-    else one below it (``-_FAR``)."""
-    if nearest <= 0.0 and gap_sum <= (0.5 + _GAP_TOL) * h * mass:
-        return abs(gap_sum) + _GAP_TOL * h * mass
-    return -_FAR
 
 
 @njit(cache=True, fastmath=True)
@@ -535,19 +536,14 @@ def body_contact_sides(
             m_near = m - m_far
             jx = 0.0
             jz = 0.0
-            reach_near = _GAP_TOL * h * m_near
-            reach_far = _GAP_TOL * h * m_far
-            if gap_check:  # gap sums shifted so that the contact test below reads "in contact"
-                reach_near = _touching(side[i, j, 5], side[i, j, 9], m_near, h)
-                reach_far = _touching(side[i, j, 8], side[i, j, 10], m_far, h)
+            near_in = _in_contact(side[i, j, 5], side[i, j, 9] if gap_check else 0.0, m_near, h, gap_check)
+            far_in = _in_contact(side[i, j, 8], side[i, j, 10] if gap_check else 0.0, m_far, h, gap_check)
             if m_near > 1e-9 * m:
                 vx, vz = _node_velocity(
                     m_near, px - side[i, j, 1], pz - side[i, j, 2], dt, gravity, keep, i, j, nx, pad,
                     wall_kind, wall_mu,
                 )  # fmt: skip
-                nvx, nvz = _contact_field(
-                    vx, vz, side[i, j, 3], side[i, j, 4], side[i, j, 5], reach_near, ubx, ubz, mu
-                )
+                nvx, nvz = _contact_field(vx, vz, side[i, j, 3], side[i, j, 4], near_in, ubx, ubz, mu)
                 grid_vel[i, j, 0] = nvx
                 grid_vel[i, j, 1] = nvz
                 jx -= m_near * (nvx - vx) / dt
@@ -556,9 +552,7 @@ def body_contact_sides(
                 vx, vz = _node_velocity(
                     m_far, side[i, j, 1], side[i, j, 2], dt, gravity, keep, i, j, nx, pad, wall_kind, wall_mu
                 )
-                nvx, nvz = _contact_field(
-                    vx, vz, side[i, j, 6], side[i, j, 7], side[i, j, 8], reach_far, ubx, ubz, mu
-                )
+                nvx, nvz = _contact_field(vx, vz, side[i, j, 6], side[i, j, 7], far_in, ubx, ubz, mu)
                 grid_vel_m[i, j, 0] = nvx
                 grid_vel_m[i, j, 1] = nvz
                 jx -= m_far * (nvx - vx) / dt

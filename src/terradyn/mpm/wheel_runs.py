@@ -172,19 +172,14 @@ def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, dr
                 "given with a spin rate omega",
                 "omega = 0 tows a locked wheel or a sled",
             )
-        if slip is not None:
-            raise InputError(
-                "slip", slip, "not given with a forward speed", "give the slip or the forward speed"
-            )
-        if drawbar_load != 0.0:
-            raise InputError(
-                "drawbar_load", drawbar_load, "0 with a forward speed", "the forward speed is imposed"
-            )
-        if drive.initial_speed != 0:
-            raise InputError(
-                "initial_speed", drive.initial_speed, "0 with a forward speed",
-                "the forward speed is imposed",
-            )  # fmt: skip
+        for field, value, given in (
+            ("slip", slip, slip is not None),
+            ("drawbar_load", drawbar_load, drawbar_load != 0.0),
+            ("initial_speed", drive.initial_speed, drive.initial_speed != 0),
+        ):
+            if given:
+                allowed = "not given with a forward speed" if field == "slip" else "0 with a forward speed"
+                raise InputError(field, value, allowed, "the forward speed is imposed")
     if (omega is None) == (drive_torque is None):
         raise InputError("omega", omega, "exactly one of omega or drive_torque", "give one of them")
     torque, omega_cmd = 0.0, 0.0
