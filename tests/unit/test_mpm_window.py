@@ -86,6 +86,23 @@ def test_a_windowed_run_resumes_bit_for_bit(tmp_path, runs):
         _wheel(0.0, checkpoint_path=ckpt, resume=True)
 
 
+def test_the_window_grows_ahead_of_a_bow_wave_and_keeps_the_whole_beds_forces():
+    # a locked wheel towed at 0.9 radii of sinkage pushes a heap about 4.6 radii ahead of its axle;
+    # a window of fixed length put its leading wall into that heap (pull 12.43 N against 12.52 N on
+    # the whole bed, sinkage 30.2 against 34.5 mm, both on a bed whose end the heap had reached)
+    plow = dict(load=10.0, omega=0.0, slip=None, forward_speed=0.3, duration=0.5)
+    windowed, whole = _wheel(None, **plow), _wheel(0.0, **plow)
+    meta = windowed.metadata
+    assert meta["window_final_m"] > meta["window_m"] + 2 * H  # it grew
+    assert meta["heap_ahead_m"] > 4 * 0.04
+    assert not meta["heap_reached_bed_end"]
+    assert meta["bed_beyond_heap_m"] >= meta["window_clearance_m"]
+    a, b = windowed.summary, whole.summary
+    assert abs(a["drawbar_pull_N"] - b["drawbar_pull_N"]) < 0.02 * plow["load"]
+    assert abs(a["sinkage_m"] - b["sinkage_m"]) < 0.1 * H
+    assert a["force_z_N"] == pytest.approx(b["force_z_N"], rel=0.01)
+
+
 def test_bad_windows_are_refused():
     with pytest.raises(InputError, match=r"^window = "):
         Bed(window=-0.1)

@@ -199,6 +199,7 @@ def _derived_inputs(runner: Runner, eff: Body) -> dict[str, Any]:
         "mass": runner.body.mass,
         "inertia": runner.body.inertia,
         **({"window": runner.window} if runner.window > 0 else {}),
+        **({"window_clearance": runner.window_clearance} if runner.window_clearance > 0 else {}),
     }
 
 
@@ -539,6 +540,24 @@ def _body_state(c: _Common, seg, pose, free, mass, load, width, inertia=None) ->
     )
 
 
+def _window_metadata(runner: Runner) -> dict[str, Any]:
+    """A windowed run's bow-wave bookkeeping at its end: the window's length, how far ahead of the body
+    grains are heaped, and how much bed is left beyond them (less than the window's clearance: the
+    heap has reached the end of the bed, whose wall then holds it; lengthen the bed)."""
+    if runner.window <= 0.0 or runner.window_clearance <= 0.0:
+        return {}
+    x_body = float(runner.body.pose[0])
+    toe = runner.heap_toe(x_body)
+    bed = runner.bed_grid
+    out: dict[str, Any] = {"window_clearance_m": runner.window_clearance, "window_final_m": runner.grid.width}
+    if toe is not None:
+        end = bed.x_left + bed.width if toe > x_body else bed.x_left
+        out["heap_ahead_m"] = abs(toe - x_body)
+        out["bed_beyond_heap_m"] = abs(end - toe)
+        out["heap_reached_bed_end"] = bool(abs(end - toe) < runner.window_clearance)
+    return out
+
+
 def _metadata(runner: Runner, model: GranularModel, body: Body, eff: Body, wall: float) -> dict[str, Any]:
     g = runner.bed_grid
     transfer = "APIC" if runner.flip == 0 else f"FLIP {runner.flip:g} / APIC blend"
@@ -560,6 +579,7 @@ def _metadata(runner: Runner, model: GranularModel, body: Body, eff: Body, wall:
         "particles": len(runner.particles),
         "window_m": runner.window,  # 0: the whole bed was stepped
         "stepped_particles": runner.stepped_particles,  # in the window at the end of the run
+        **_window_metadata(runner),
         "dt_s": runner.dt,
         "steps": runner.step,
         "wall_time_s": wall,

@@ -350,8 +350,11 @@ class Runner:
     alone whose edges act as the bed's side walls; the rest of the bed is held as it is (the undisturbed
     bed ahead of a wheel, its rut behind). At the end of each chunk the window is re-centred on the
     body, so a body that travels far pays for the window, not for the bed. ``particles`` always holds
-    the whole bed. The window is a function of the body's position at the end of a chunk, so a
-    resumed run rebuilds the same one.
+    the whole bed. With ``window_clearance`` [m] > 0 the window's leading edge (in the direction the
+    body moves) also keeps that clearance ahead of the farthest grain heaped above the free surface
+    there, so a bow wave never meets the window's wall: the window then grows as the heap grows, up
+    to the end of the bed. The window is a function of the body's position and velocity and of the
+    grains at the end of a chunk, so a resumed run rebuilds the same one.
     """
 
     model: GranularModel
@@ -372,6 +375,7 @@ class Runner:
     progress: ProgressCallback | None = None
     frame_every: int = 0
     window: float = 0.0
+    window_clearance: float = 0.0
     averaged_divergence: bool = False  # Resolution.volumetric == "patch"
     flip: float = 0.0  # Resolution.flip
     step: int = 0
@@ -478,8 +482,13 @@ class Runner:
                 self.window = 0.0
         if self._bed is not None and self._active is None:
             self._gather()
-        if getattr(self, "_buf", None) is None:
-            nx, nz = self.grid.shape
+        self._allocate()
+
+    def _allocate(self) -> None:
+        """Grid and scratch buffers for the current grid (again when a growing window changed it)."""
+        nx, nz = self.grid.shape
+        grid: tuple[np.ndarray, np.ndarray] | None = getattr(self, "_grid", None)
+        if grid is None or grid[0].shape != (nx, nz):
             self._grid = (np.zeros((nx, nz)), np.zeros((nx, nz, 2)))
             self._buf = K.make_buffer(nx, nz, len(self.particles))
             self._scratch = K.make_scratch(nx, nz, len(self.particles))  # sized for the whole bed
@@ -495,14 +504,35 @@ class Runner:
         return len(self.particles) if self._active is None else len(self._active)
 
     def _window_grid(self, x_body: float) -> BedGrid:
-        """The window's grid centred on ``x_body`` [m] to the nearest cell, inside the bed."""
+        """The window's grid centred on ``x_body`` [m] to the nearest cell, inside the bed, its leading
+        edge moved on to clear the bow wave by ``window_clearance`` (see the class notes)."""
         bed = self._bed
         assert bed is not None
         h = bed.cell_size
         cells = math.ceil(self.window / h - 1e-9)
-        first, last = round(bed.x_left / h), round(bed.x_left / h) + round(bed.width / h) - cells
-        left = min(max(round(x_body / h - 0.5 * cells), first), last)
-        return BedGrid(cells * h, bed.depth, bed.air, h, left * h, bed.walls, bed.surface_offset)
+        first = round(bed.x_left / h)
+        end = first + round(bed.width / h)
+        left = min(max(round(x_body / h - 0.5 * cells), first), end - cells)
+        right = left + cells
+        toe = self.heap_toe(x_body)
+        if toe is not None and self.window_clearance > 0.0:
+            if toe > x_body:
+                right = max(right, min(end, math.ceil((toe + self.window_clearance) / h - 1e-9)))
+            else:
+                left = min(left, max(first, math.floor((toe - self.window_clearance) / h + 1e-9)))
+        return BedGrid((right - left) * h, bed.depth, bed.air, h, left * h, bed.walls, bed.surface_offset)
+
+    def heap_toe(self, x_body: float) -> float | None:
+        """x [m] of the farthest grain above the free surface (z > 0) ahead of ``x_body`` in the
+        direction the body moves, or None (the body does not move, or nothing is heaped ahead)."""
+        vx = float(self.body.twist[0])
+        if vx == 0.0:
+            return None
+        x, z = self.particles.pos[:, 0], self.particles.pos[:, 1]
+        ahead = (z > 0.0) & ((x - x_body) * vx > 0.0)
+        if not np.any(ahead):
+            return None
+        return float(np.max(x[ahead]) if vx > 0.0 else np.min(x[ahead]))
 
     def _gather(self) -> None:
         """Take the bed particles within the window as the stepped set. Stepped particles stay inside
@@ -523,9 +553,10 @@ class Runner:
         for k in ParticleState.NAMES:
             getattr(self.particles, k)[self._index] = getattr(self._active, k)
         grid = self._window_grid(self.body.pose[0])
-        if grid.x_left != self.grid.x_left:
+        if grid.x_left != self.grid.x_left or grid.width != self.grid.width:
             self.grid = grid
             self._gather()
+            self._allocate()
 
     def advance_steps(
         self, n: int, damping: float = 0.0, ramp: tuple[Phase, int] | None = None

@@ -66,16 +66,29 @@ def _wheel_margin(reach: float, cell_size: float) -> float:
     return max(2.0 * reach, 4.0 * cell_size)
 
 
+def _bow_wave_allowance(reach: float, travel: float) -> float:
+    """Bed [m] a wheel bed keeps ahead of the wheel's final position beyond its margin, for the heap
+    it pushes: in plane strain grains cannot flow round the wheel, so a wheel that leaves a rut drives a
+    heap that grows with the distance travelled. Measured (docs/mpm.md "Moving window"): heaps reach
+    4.3-4.6 reaches ahead of the axle (a smooth rim of 0.106 m at slip 0.5 on poppy seeds after 1.8 m
+    of travel; a locked 0.04 m wheel towed 0.15 m at 0.9 radii of sinkage)."""
+    return max(4.0 * reach, 0.5 * travel)
+
+
 def _wheel_bed(seg, c: _Common, travel, v_forward):
-    """Bed for a wheel run and its start pose (lowest point half a cell above the surface)."""
+    """Bed for a wheel run and its start pose (lowest point half a cell above the surface). By default
+    the bed keeps the wheel's margin behind its start and ahead of its end, and
+    :func:`_bow_wave_allowance` more ahead; a given bed length keeps up to the margin behind."""
     h = c.cell_size
     reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
     margin = _wheel_margin(reach, h)
     bed_depth, bed_length = c.bed.depth, c.bed.width
     bed_depth = 2.0 * reach + margin if bed_depth is None else bed_depth
-    bed_length = travel + 2.0 * (reach + margin) if bed_length is None else bed_length
+    if bed_length is None:
+        bed_length = travel + 2.0 * (reach + margin) + _bow_wave_allowance(reach, travel)
     check_positive("bed_length", bed_length)
-    x_start = -0.5 * travel if v_forward >= 0 else 0.5 * travel
+    back = max(0.0, min(reach + margin, 0.5 * (bed_length - travel)))
+    x_start = -0.5 * bed_length + back if v_forward >= 0 else 0.5 * bed_length - back
     grid = BedGrid(
         bed_length, bed_depth, 2.0 * reach + 4 * h, h, -0.5 * bed_length, c.walls, c.bed.surface_offset
     )
@@ -349,6 +362,7 @@ def run_wheel(
     )
     runner = _runner(c, grid, state, dt, phases, every, v_max, outputs, _run_inputs(c, wheel, named))
     runner.window = _wheel_window(c, reach)
+    runner.window_clearance = _wheel_margin(reach, h) if runner.window > 0 else 0.0
     wall = _execute(runner, outputs.resume, eff)
     avg = specs["drive"].average_fraction
     series, summary = _wheel_summary(runner, w, seg, avg, radius, load)
