@@ -124,7 +124,9 @@ class Bed(_Spec):
     window : length [m] of the moving window of grains that is stepped around the body (see
         :class:`~terradyn.mpm.solver.Runner`); 0 = the whole bed. None = the case's rule: a wheel
         run keeps the wheel and its bed margin on either side (the bed around its start), an
-        intrusion steps the whole bed. :class:`~terradyn.mpm.MPMTerrain` steps the whole bed.
+        intrusion steps the whole bed. A wheel's window (given or not) grows ahead of the heap the
+        wheel pushes, keeping its margin clear of it. :class:`~terradyn.mpm.MPMTerrain` steps the
+        whole bed.
     surface_offset : the grid's phase against the free surface, a fraction of a cell in [0, 1) and a
         multiple of 1 / ``particles_per_cell`` (default 0: the surface on a node line; see
         :class:`~terradyn.mpm.solver.BedGrid`). Runs at several offsets measure how much a result

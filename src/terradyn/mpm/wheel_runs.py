@@ -298,8 +298,11 @@ def run_wheel(
     ``drive_torque_Nm`` (= -soil torque about +y at the axle), ``force_z_N``, ``slip`` (measured).
 
     Specs as in :func:`run_intrusion`, with :class:`Drive` for the run length. The bed's sizing rule
-    leaves max(2 reaches, 4 cells) of grains beyond the wheel's path and below two reaches; its
-    ``width`` is the bed length. The resolution needs 8 cells across the wheel by default.
+    leaves max(2 reaches, 4 cells) of grains beyond the wheel's path and below two reaches, and
+    max(4 reaches, travel / 2) more ahead for the heap the wheel pushes; its ``width`` is the bed
+    length. The moving window (``bed.window``) grows ahead of that heap; the metadata's
+    ``heap_reached_bed_end`` is true when the heap has reached the end of the bed (lengthen it).
+    The resolution needs 8 cells across the wheel by default.
     ``outputs`` intervals are in seconds of simulated time (record: duration / 200, snapshots:
     duration / 20). The flat keywords of earlier releases (``cell_size=``, ``duration=``,
     ``bed_length=``...) and the model overrides work as in :func:`run_intrusion`.
