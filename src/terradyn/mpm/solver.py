@@ -23,6 +23,7 @@ from .bodies import BodyState, body_segments_world
 from .checkpoint import load_checkpoint, save_checkpoint, write_snapshot
 from .interrupts import RunInterrupted, _HeldInterrupts
 from .model import BedPacking, GranularModel, Walls
+from .window import heap_toe, window_cells
 
 __all__ = [
     "GRID_PAD",
@@ -350,11 +351,9 @@ class Runner:
     alone whose edges act as the bed's side walls; the rest of the bed is held as it is (the undisturbed
     bed ahead of a wheel, its rut behind). At the end of each chunk the window is re-centred on the
     body, so a body that travels far pays for the window, not for the bed. ``particles`` always holds
-    the whole bed. With ``window_clearance`` [m] > 0 the window's leading edge (in the direction the
-    body moves) also keeps that clearance ahead of the farthest grain heaped above the free surface
-    there, so a bow wave never meets the window's wall: the window then grows as the heap grows, up
-    to the end of the bed. The window is a function of the body's position and velocity and of the
-    grains at the end of a chunk, so a resumed run rebuilds the same one.
+    the whole bed. With ``window_clearance`` [m] > 0 the leading edge keeps that clearance beyond the
+    bow wave, growing with it (:mod:`~terradyn.mpm.window`). The window is a function of the state at
+    the end of a chunk, so a resumed run rebuilds the same one.
     """
 
     model: GranularModel
@@ -504,35 +503,16 @@ class Runner:
         return len(self.particles) if self._active is None else len(self._active)
 
     def _window_grid(self, x_body: float) -> BedGrid:
-        """The window's grid centred on ``x_body`` [m] to the nearest cell, inside the bed, its leading
-        edge moved on to clear the bow wave by ``window_clearance`` (see the class notes)."""
+        """The window's grid around ``x_body`` [m] (:func:`~terradyn.mpm.window.window_cells`)."""
         bed = self._bed
         assert bed is not None
-        h = bed.cell_size
-        cells = math.ceil(self.window / h - 1e-9)
-        first = round(bed.x_left / h)
-        end = first + round(bed.width / h)
-        left = min(max(round(x_body / h - 0.5 * cells), first), end - cells)
-        right = left + cells
-        toe = self.heap_toe(x_body)
-        if toe is not None and self.window_clearance > 0.0:
-            if toe > x_body:
-                right = max(right, min(end, math.ceil((toe + self.window_clearance) / h - 1e-9)))
-            else:
-                left = min(left, max(first, math.floor((toe - self.window_clearance) / h + 1e-9)))
+        h, toe = bed.cell_size, self.heap_toe(x_body)
+        left, right = window_cells(bed.x_left, bed.width, h, self.window, x_body, toe, self.window_clearance)
         return BedGrid((right - left) * h, bed.depth, bed.air, h, left * h, bed.walls, bed.surface_offset)
 
     def heap_toe(self, x_body: float) -> float | None:
-        """x [m] of the farthest grain above the free surface (z > 0) ahead of ``x_body`` in the
-        direction the body moves, or None (the body does not move, or nothing is heaped ahead)."""
-        vx = float(self.body.twist[0])
-        if vx == 0.0:
-            return None
-        x, z = self.particles.pos[:, 0], self.particles.pos[:, 1]
-        ahead = (z > 0.0) & ((x - x_body) * vx > 0.0)
-        if not np.any(ahead):
-            return None
-        return float(np.max(x[ahead]) if vx > 0.0 else np.min(x[ahead]))
+        """The bow wave's toe ahead of ``x_body`` [m] as the body moves (:func:`~.window.heap_toe`)."""
+        return heap_toe(self.particles.pos, float(self.body.twist[0]), x_body)
 
     def _gather(self) -> None:
         """Take the bed particles within the window as the stepped set. Stepped particles stay inside
