@@ -285,6 +285,29 @@ def test_an_interrupt_swallowed_on_the_way_still_ends_the_run_as_interrupted(tmp
     reset_interrupts()
 
 
+def test_a_failure_after_a_swallowed_interrupt_is_reported_as_the_interrupt(monkeypatch, capsys):
+    """The CI failure of stop 34: a budget's SIGINT swallowed inside matplotlib left a figure half laid
+    out and saving it raised ``ValueError``; the run printed "internal error" and then "interrupted".
+    A failure after an interrupt is its consequence: one line, exit code 130. Without an interrupt
+    the same failure is still an internal error (70)."""
+    from terradyn._interrupts import note_interrupt, reset_interrupts
+    from terradyn.cli import app
+
+    def run_and_fail(args, interrupted=True):
+        if interrupted:
+            note_interrupt()
+        raise ValueError("Invalid bounding box")
+
+    reset_interrupts()
+    assert _main_with_run(monkeypatch, app, run_and_fail) == 130
+    assert capsys.readouterr().err == "terradyn: interrupted\n"
+    assert _main_with_run(monkeypatch, app, lambda args: run_and_fail(args, interrupted=False)) == 70
+    err = capsys.readouterr().err
+    assert err.startswith("terradyn: internal error: ValueError: Invalid bounding box")
+    assert err.count("\n") == 1
+    reset_interrupts()
+
+
 def test_an_interrupt_inside_a_destructor_prints_only_the_one_line(monkeypatch, capsys):
     """The CI failure of stop 32: SIGINT 0.4 s after start landed in llvmlite's ``__del__``; the
     interpreter printed "Exception ignored in ... Traceback" before "terradyn: interrupted". A

@@ -368,6 +368,13 @@ def _guarded(args: list[str]) -> int:
     try:
         try:
             return _run(args)
+        except Exception:
+            # measured (CI, stop 34): a budget's SIGINT swallowed inside matplotlib left a figure half
+            # laid out, and saving it then failed with "ValueError: Invalid bounding box". After an
+            # interrupt, a failure is its consequence, not a bug to report: the run was interrupted.
+            if interrupt_seen():
+                raise KeyboardInterrupt from None
+            raise
         finally:
             _close_figures(figures)
     except KeyboardInterrupt:
