@@ -39,8 +39,10 @@ def test_reduces_to_rft_without_inertia_at_low_spin(body):
     off = DRFTModel(POPPY, inertial_coefficient=0.0, structural_correction=False)
     for pose, twist in _states(10):
         np.testing.assert_allclose(
-            drft_wrench(body, off, pose, twist).as_array(), rft_wrench(body, POPPY, pose, twist).as_array(),
-            rtol=1e-14, atol=1e-14,
+            drft_wrench(body, off, pose, twist).as_array(),
+            rft_wrench(body, POPPY, pose, twist).as_array(),
+            rtol=1e-14,
+            atol=1e-14,
         )
 
 

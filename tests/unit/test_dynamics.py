@@ -49,8 +49,11 @@ def test_drawbar_load_steady_state():
 
 def test_steady_state_independent_of_initial_velocity_and_ramp(rolling):
     ref = rolling.steady_summary()
-    for kwargs in ({"initial_velocity": 0.6}, {"initial_velocity": (0.2, -0.1)},
-                   {"omega_initial": 0.0, "ramp": 10.0}):
+    for kwargs in (
+        {"initial_velocity": 0.6},
+        {"initial_velocity": (0.2, -0.1)},
+        {"omega_initial": 0.0, "ramp": 10.0},
+    ):
         r = simulate_wheel(WHEEL, MS, mass=MASS, omega=5.0, duration=6.0, dt=1e-3, **kwargs)
         s = r.steady_summary()
         assert s["slip"] == pytest.approx(ref["slip"], abs=1e-3)
@@ -58,12 +61,14 @@ def test_steady_state_independent_of_initial_velocity_and_ramp(rolling):
 
 
 def test_ramp_and_step_profiles():
-    r = simulate_wheel(WHEEL, MS, mass=MASS, omega=4.0, omega_initial=1.0, ramp=6.0, step_time=0.2,
-                       duration=1.0, dt=1e-3)
+    r = simulate_wheel(
+        WHEEL, MS, mass=MASS, omega=4.0, omega_initial=1.0, ramp=6.0, step_time=0.2, duration=1.0, dt=1e-3
+    )
     expect = np.where(r.t < 0.2, 1.0, np.minimum(4.0, 1.0 + 6.0 * (r.t - 0.2)))
     np.testing.assert_allclose(r.omega[1:], expect[1:], atol=1e-12)
-    step = simulate_wheel(WHEEL, MS, mass=MASS, omega=3.0, omega_initial=0.5, step_time=0.3,
-                          duration=0.5, dt=1e-3)
+    step = simulate_wheel(
+        WHEEL, MS, mass=MASS, omega=3.0, omega_initial=0.5, step_time=0.3, duration=0.5, dt=1e-3
+    )
     assert np.all(step.omega[step.t < 0.3 - 1e-9] == 0.5) and np.all(step.omega[step.t > 0.3 + 1e-9] == 3.0)
 
 
@@ -71,8 +76,17 @@ def test_torque_driven_wheel_reaches_the_steady_slip_of_that_torque_and_load():
     # With RFT a steady state under a torque needs the matching drawbar load (rate independence
     # leaves the speed free); the slip and sinkage are those of the quasi-static solve.
     target = wheel_self_propelled(WHEEL, MS, LOAD, drawbar_load=20.0)
-    r = simulate_wheel(WHEEL, MS, mass=MASS, inertia=0.05, torque=target.drive_torque_Nm, omega_initial=4.0,
-                       drawbar_load=20.0, duration=4.0, dt=1e-3)
+    r = simulate_wheel(
+        WHEEL,
+        MS,
+        mass=MASS,
+        inertia=0.05,
+        torque=target.drive_torque_Nm,
+        omega_initial=4.0,
+        drawbar_load=20.0,
+        duration=4.0,
+        dt=1e-3,
+    )
     s = r.steady_summary()
     assert np.all(r.torque == target.drive_torque_Nm)
     assert s["slip"] == pytest.approx(target.slip, abs=0.01)
@@ -82,8 +96,16 @@ def test_torque_driven_wheel_reaches_the_steady_slip_of_that_torque_and_load():
 
 
 def _drop(dt):
-    return simulate_wheel(WHEEL, MS, mass=MASS, omega=0.0, duration=0.4, dt=dt,
-                          initial_pose=Pose2D(0.0, 0.14, 0.0), initial_velocity=(0.0, -0.5))
+    return simulate_wheel(
+        WHEEL,
+        MS,
+        mass=MASS,
+        omega=0.0,
+        duration=0.4,
+        dt=dt,
+        initial_pose=Pose2D(0.0, 0.14, 0.0),
+        initial_velocity=(0.0, -0.5),
+    )
 
 
 def test_energy_balance_of_a_dropped_wheel():
@@ -130,8 +152,21 @@ def test_grousered_wheel_dynamics_rft_and_drft():
 def test_outputs(tmp_path, rolling):
     assert isinstance(rolling, WheelDynamicsResult)
     df = rolling.to_dataframe()
-    for col in ("time_s", "x_m", "z_m", "theta_rad", "vx_m_s", "vz_m_s", "omega_rad_s", "force_x_N",
-                "force_z_N", "drive_torque_Nm", "slip", "sinkage_m", "power_W"):
+    for col in (
+        "time_s",
+        "x_m",
+        "z_m",
+        "theta_rad",
+        "vx_m_s",
+        "vz_m_s",
+        "omega_rad_s",
+        "force_x_N",
+        "force_z_N",
+        "drive_torque_Nm",
+        "slip",
+        "sinkage_m",
+        "power_W",
+    ):
         assert col in df.columns
     assert len(df) == len(rolling) == 3001
     np.testing.assert_allclose(rolling.power, rolling.torque * rolling.omega)
@@ -202,8 +237,7 @@ def test_compiled_steps_satisfy_backward_euler_with_the_numpy_force_law():
     wheel = WheelGrousered(0.1, 0.05, 15, 0.006, 0.004)
     model = DRFTModel(poppy)
     dt, mass = 5e-4, 4.0
-    r = simulate_wheel(wheel, poppy, model=model, mass=mass, omega=8.0, duration=0.4, dt=dt,
-                       drawbar_load=2.0)
+    r = simulate_wheel(wheel, poppy, model=model, mass=mass, omega=8.0, duration=0.4, dt=dt, drawbar_load=2.0)
     np.testing.assert_allclose(np.diff(r.x), dt * r.vx[1:], rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(np.diff(r.z), dt * r.vz[1:], rtol=1e-12, atol=1e-15)
     from terradyn.kinematics import Twist2D
@@ -213,11 +247,20 @@ def test_compiled_steps_satisfy_backward_euler_with_the_numpy_force_law():
     residuals = []
     matched = []
     for k in range(1, len(r), 3):
-        w = drft_wrench(wheel, model, Pose2D(r.x[k], r.z[k], r.theta[k]),
-                        Twist2D(r.vx[k], r.vz[k], r.omega[k]), backend="numpy", leading_band=0.01)
+        w = drft_wrench(
+            wheel,
+            model,
+            Pose2D(r.x[k], r.z[k], r.theta[k]),
+            Twist2D(r.vx[k], r.vz[k], r.omega[k]),
+            backend="numpy",
+            leading_band=0.01,
+        )
         # (an element entering at zero depth can move the split of the structural correction: rare)
-        matched.append(np.allclose([w.fx, w.fz, w.torque_y], [r.fx[k], r.fz[k], r.soil_torque[k]],
-                                   rtol=1e-9, atol=1e-9 * mg))
+        matched.append(
+            np.allclose(
+                [w.fx, w.fz, w.torque_y], [r.fx[k], r.fz[k], r.soil_torque[k]], rtol=1e-9, atol=1e-9 * mg
+            )
+        )
         res_x = mass * (r.vx[k] - r.vx[k - 1]) / dt - (w.fx - 2.0)
         res_z = mass * (r.vz[k] - r.vz[k - 1]) / dt - (w.fz - mg)
         residuals.append(max(abs(res_x), abs(res_z)) / mg)
@@ -232,8 +275,9 @@ def test_low_spin_steady_state_matches_self_propelled_solve():
     # default rim make it bob (+1.6 % slip), so use 4x finer elements, as a convergence check would.
     size = WHEEL.default_element_size / 4
     steady = wheel_self_propelled(WHEEL, RFTModel(MS, element_size=size), LOAD)
-    r = simulate_wheel(WHEEL, MS, mass=MASS, omega=1.0, duration=25.0, dt=2e-3, element_size=size,
-                       output_every=5)
+    r = simulate_wheel(
+        WHEEL, MS, mass=MASS, omega=1.0, duration=25.0, dt=2e-3, element_size=size, output_every=5
+    )
     s = r.steady_summary()
     assert s["slip"] == pytest.approx(steady.slip, abs=2e-4)
     assert s["sinkage_m"] == pytest.approx(steady.sinkage_m, rel=5e-4)

@@ -70,9 +70,18 @@ def test_scaled_simulations_have_identical_dimensionless_trajectories(factors):
     dt = 1e-3
     runs = []
     for test, step in ((base, dt), (new, dt * factors.time)):
-        runs.append(simulate_wheel(test.body, test.material, mass=test.mass, omega=test.omega,
-                                   gravity=test.gravity, duration=2.0 * (step / dt), dt=step,
-                                   output_every=10))
+        runs.append(
+            simulate_wheel(
+                test.body,
+                test.material,
+                mass=test.mass,
+                omega=test.omega,
+                gravity=test.gravity,
+                duration=2.0 * (step / dt),
+                dt=step,
+                output_every=10,
+            )
+        )
     a, b = runs
     L = factors.length
     np.testing.assert_allclose(b.t / factors.time, a.t, rtol=1e-9)

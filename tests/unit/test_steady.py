@@ -120,8 +120,9 @@ def test_flapped_wheel_self_propelled():
 def test_flapped_wheel_dynamic_average_matches_quasi_static():
     from terradyn.optimize import flapped_wheel_performance
 
-    kw = dict(hub_radius=0.05, width=0.05, flap_count=6, flap_length=0.03, flap_angle=0.0, load=10.0,
-              omega=2.0)
+    kw = dict(
+        hub_radius=0.05, width=0.05, flap_count=6, flap_length=0.03, flap_angle=0.0, load=10.0, omega=2.0
+    )
     quasi = flapped_wheel_performance(materials.get("CPS"), **kw)
     dyn = flapped_wheel_performance(materials.get("CPS"), method="dynamic", **kw)
     assert dyn["velocity_normalised"] == pytest.approx(quasi["velocity_normalised"], abs=0.01)

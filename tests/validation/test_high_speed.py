@@ -58,8 +58,9 @@ def test_onset_is_invariant_under_gravity_scaling():
 
 def test_slip_onset_definition():
     w = np.array([1.0, 2.0, 3.0, 4.0])
-    on = slip_onset(w, [0.2, 0.21, 0.3, 0.5], [0.05, 0.05, 0.06, 0.07], outer_diameter=0.2, gravity=10.0,
-                    slip_margin=0.05)
+    on = slip_onset(
+        w, [0.2, 0.21, 0.3, 0.5], [0.05, 0.05, 0.06, 0.07], outer_diameter=0.2, gravity=10.0, slip_margin=0.05
+    )
     assert on["omega_onset_rad_s"] == pytest.approx(2.0 + 0.04 / 0.09)
     assert on["omega_steepest_rad_s"] == pytest.approx(3.5)
     assert on["drop_to_sinkage_onset"] == pytest.approx(0.1**2 * on["omega_onset_rad_s"] ** 2 / (10 * 0.05))
@@ -71,8 +72,12 @@ def test_slip_onset_definition():
 
 def test_bad_inputs():
     no_density = materials.get("MS").with_changes(critical_density=None)
-    for kwargs, field in (({"models": ("mpm",)}, "models"), ({"omegas": [3.0, 1.0]}, "omegas"),
-                          ({"gravity": -1.0}, "gravity"), ({"material": no_density}, "material")):
+    for kwargs, field in (
+        ({"models": ("mpm",)}, "models"),
+        ({"omegas": [3.0, 1.0]}, "omegas"),
+        ({"gravity": -1.0}, "gravity"),
+        ({"material": no_density}, "material"),
+    ):
         with pytest.raises(InputError) as exc:
             high_speed_sweep(reduced=True, **kwargs)
         assert exc.value.field == field

@@ -47,9 +47,7 @@ class Body(ABC):
     def discretize(self, element_size: float | None = None) -> SurfaceElements:
         """Surface elements no longer than ``element_size`` [m] (default :attr:`default_element_size`)."""
         size = self.default_element_size if element_size is None else element_size
-        if not (
-            isinstance(size, Real) and not isinstance(size, bool) and math.isfinite(size) and size > 0
-        ):
+        if not (isinstance(size, Real) and not isinstance(size, bool) and math.isfinite(size) and size > 0):
             raise InputError("element_size", element_size, "a length > 0 [m]")
         if size > self.size:
             raise InputError(

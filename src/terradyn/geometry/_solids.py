@@ -82,9 +82,7 @@ def _centroid(p: NDArray[np.float64]) -> NDArray[np.float64]:
     """Area centroid (x, z) [m] of the closed polygon ``p`` (M, 2)."""
     q = np.roll(p, -1, axis=0)
     w = p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]
-    return np.array([np.sum((p[:, 0] + q[:, 0]) * w), np.sum((p[:, 1] + q[:, 1]) * w)]) / (
-        3.0 * np.sum(w)
-    )
+    return np.array([np.sum((p[:, 0] + q[:, 0]) * w), np.sum((p[:, 1] + q[:, 1]) * w)]) / (3.0 * np.sum(w))
 
 
 @dataclass(frozen=True)
@@ -348,9 +346,7 @@ def _json_points(path: Path, text: str, allowed: str) -> list[list[float]]:
         values = []
         for value in row:
             if isinstance(value, bool) or not isinstance(value, int | float):
-                raise InputError(
-                    "path", str(path), allowed, f"points[{k}]: {_short(value)} is not a number"
-                )
+                raise InputError("path", str(path), allowed, f"points[{k}]: {_short(value)} is not a number")
             values.append(float(value))
         rows.append(values)
     return rows
@@ -373,9 +369,7 @@ def _csv_points(path: Path, text: str, allowed: str) -> list[list[float]]:
             if k == 0:
                 continue  # a header
             bad = next(c for c in cells if not _is_number(c))
-            raise InputError(
-                "path", str(path), allowed, f"line {n}: {bad!r} is not a number"
-            ) from None
+            raise InputError("path", str(path), allowed, f"line {n}: {bad!r} is not a number") from None
     if not rows:
         raise InputError("path", str(path), allowed, "no vertex rows found")
     return rows
@@ -387,4 +381,3 @@ def _is_number(text: str) -> bool:
     except ValueError:
         return False
     return True
-

@@ -27,6 +27,7 @@ def __getattr__(name: str) -> Any:
         return getattr(steady3d, name)
     raise AttributeError(name)
 
+
 __all__ = [
     "CoupledResult",
     "WheelDynamicsResult",

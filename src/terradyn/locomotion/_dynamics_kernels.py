@@ -105,12 +105,46 @@ def _soil(geo, coeffs, params, x, z, th, vx, vz, w):
     drop = params[P_DROP_COEFF] * w * w
     if drop > 0.0 and params[P_BAND] > 0.0:
         return drft_wrench_smooth_kernel(
-            mid, nrm, lengths, ang, size, params[P_WIDTH], x, z, th, vx, vz, w, coeffs, params[P_SCALE],
-            params[P_SURFACE], x, z, params[P_LAM_RHO], drop, params[P_BAND],
+            mid,
+            nrm,
+            lengths,
+            ang,
+            size,
+            params[P_WIDTH],
+            x,
+            z,
+            th,
+            vx,
+            vz,
+            w,
+            coeffs,
+            params[P_SCALE],
+            params[P_SURFACE],
+            x,
+            z,
+            params[P_LAM_RHO],
+            drop,
+            params[P_BAND],
         )
     return drft_wrench_kernel(
-        mid, nrm, lengths, params[P_WIDTH], x, z, th, vx, vz, w, coeffs, params[P_SCALE],
-        params[P_SURFACE], x, z, params[P_LAM_RHO], drop, params[P_BAND],
+        mid,
+        nrm,
+        lengths,
+        params[P_WIDTH],
+        x,
+        z,
+        th,
+        vx,
+        vz,
+        w,
+        coeffs,
+        params[P_SCALE],
+        params[P_SURFACE],
+        x,
+        z,
+        params[P_LAM_RHO],
+        drop,
+        params[P_BAND],
     )
 
 
@@ -325,9 +359,7 @@ def _step(geo, coeffs, params, t, state, acc, h, jac, jac_ok, frc, stats, out_st
         up[2] = u[2] + h * acc[2]
     up[0] = u[0] + h * acc[0]
     up[1] = u[1] + h * acc[1]
-    ok, jac_ok = _newton(
-        geo, coeffs, params, q, u, up, h, th_next, dim, jac, jac_ok, frc, stats
-    )
+    ok, jac_ok = _newton(geo, coeffs, params, q, u, up, h, th_next, dim, jac, jac_ok, frc, stats)
     out_state[0] = q[0] + h * up[0]
     out_state[1] = q[1] + h * up[1]
     out_state[2] = q[2] + h * up[2] if dim == 3 else th_next
@@ -398,8 +430,7 @@ def integrate_wheel_kernel(
     torque_drive = 0.0
     if params[P_MODE] == 1.0:
         torque_drive = params[P_TORQUE]
-    fx0, fz0, ty0 = _soil(geo, coeffs, params, state[0], state[1], state[2],
-                          state[3], state[4], state[5])
+    fx0, fz0, ty0 = _soil(geo, coeffs, params, state[0], state[1], state[2], state[3], state[4], state[5])
     _record(out, 0, 0.0, state, fx0, fz0, ty0, torque_drive, work, radius, outline, surface)
     t = 0.0
     k = 0
@@ -416,8 +447,9 @@ def integrate_wheel_kernel(
             wsum = 0.0
             tsub = t
             for _sub in range(nsub):
-                ok, jac_ok, _stuck = _step(geo, coeffs, params, tsub, state, acc, h, jac,
-                                           jac_ok, frc, stats, trial)
+                ok, jac_ok, _stuck = _step(
+                    geo, coeffs, params, tsub, state, acc, h, jac, jac_ok, frc, stats, trial
+                )
                 if not ok:
                     ok_all = False
                     if level < max_halvings:
@@ -464,4 +496,3 @@ def _record(out, k, t, state, fx, fz, ty, torque_drive, work, radius, outline, s
     out[k, C_POWER] = torque_drive * state[5]
     out[k, C_SOIL_TORQUE] = ty
     out[k, C_WORK] = work
-

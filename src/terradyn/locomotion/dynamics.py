@@ -135,8 +135,23 @@ class WheelDynamicsResult:
 
     def columns(self) -> dict[str, NDArray[np.float64]]:
         """Unit-suffixed columns (``time_s``, ``x_m``, ... ``soil_work_J``)."""
-        names = ("t", "x", "z", "theta", "vx", "vz", "omega", "fx", "fz", "torque", "slip", "sinkage",
-                 "power", "soil_torque", "soil_work")
+        names = (
+            "t",
+            "x",
+            "z",
+            "theta",
+            "vx",
+            "vz",
+            "omega",
+            "fx",
+            "fz",
+            "torque",
+            "slip",
+            "sinkage",
+            "power",
+            "soil_torque",
+            "soil_work",
+        )
         return {key: getattr(self, n) for key, n in zip(_COLUMNS, names, strict=True)}
 
     def to_dataframe(self) -> Any:
@@ -155,8 +170,10 @@ class WheelDynamicsResult:
             raise InputError("format", "netcdf", "xarray installed", "pip install terradyn[fields]") from exc
         cols = self.columns()
         time = cols.pop("time_s")
-        meta = {k: (json.dumps(v) if isinstance(v, dict | list | tuple | bool) or v is None else v)
-                for k, v in self._meta().items()}
+        meta = {
+            k: (json.dumps(v) if isinstance(v, dict | list | tuple | bool) or v is None else v)
+            for k, v in self._meta().items()
+        }
         return xr.Dataset({k: ("time_s", v) for k, v in cols.items()}, coords={"time_s": time}, attrs=meta)
 
     def save(self, path: str | Path) -> Path:
@@ -212,7 +229,8 @@ class WheelDynamicsResult:
             angle = 2.0 * math.pi * rev
             if abs(self.theta[-1] - self.theta[0]) < angle * (1 - 1e-9):
                 raise InputError(
-                    "revolutions", revolutions,
+                    "revolutions",
+                    revolutions,
                     f"at most {abs(self.theta[-1] - self.theta[0]) / (2 * math.pi):.3g} (turned in the run)",
                 )
             return self._time_at_turn(turned, angle), rev
@@ -241,8 +259,10 @@ class WheelDynamicsResult:
         start, rev = self.averaging_window(revolutions)
         sel = self.t >= start - 1e-12
         if np.count_nonzero(sel) < 2:
-            raise SolverError("steady_summary: fewer than two samples in the averaging window; "
-                              "lower output_every or run longer")
+            raise SolverError(
+                "steady_summary: fewer than two samples in the averaging window; "
+                "lower output_every or run longer"
+            )
         t = self.t[sel]
         span = float(t[-1] - t[0])
 
@@ -270,16 +290,21 @@ def _resolve_model(material: Material, model: str | RFTModel | DRFTModel, gravit
     if isinstance(model, str):
         key = model.strip().lower()
         if key == "rft":
-            return DRFTModel(material, inertial_coefficient=0.0, structural_correction=False,
-                             gravity=gravity)
+            return DRFTModel(material, inertial_coefficient=0.0, structural_correction=False, gravity=gravity)
         if key == "drft":
             return DRFTModel(material, gravity=gravity)
         raise InputError("model", model, "'rft', 'drft', an RFTModel or a DRFTModel")
     if isinstance(model, RFTModel):
         if model.material != material:
             raise InputError("model", model.name, f"a model on the same material ({material.name!r})")
-        return DRFTModel(material, inertial_coefficient=0.0, structural_correction=False, gravity=gravity,
-                         surface_level=model.surface_level, element_size=model.element_size)
+        return DRFTModel(
+            material,
+            inertial_coefficient=0.0,
+            structural_correction=False,
+            gravity=gravity,
+            surface_level=model.surface_level,
+            element_size=model.element_size,
+        )
     if isinstance(model, DRFTModel):
         if model.material != material:
             raise InputError("model", model.name, f"a model on the same material ({material.name!r})")
@@ -340,8 +365,14 @@ def stable_time_step(
     :func:`simulate_wheel` is ``min(sqrt(m / k_max) / 4, rotation limits / 2)``.
     """
     elems, _, radius, period = _geometry(body, None, nominal_radius, elements)
-    return _dt_limits(elems, material, check_positive("mass", mass),
-                      abs(check_finite("omega_max", omega_max)), radius, period)[0]
+    return _dt_limits(
+        elems,
+        material,
+        check_positive("mass", mass),
+        abs(check_finite("omega_max", omega_max)),
+        radius,
+        period,
+    )[0]
 
 
 def _facet_angle(elems: SurfaceElements) -> float | None:
@@ -356,8 +387,14 @@ def _facet_angle(elems: SurfaceElements) -> float | None:
     return float(np.median(elems.lengths[radial] / rad[radial]))
 
 
-def _dt_limits(elems: SurfaceElements, material: Material, mass: float, omega_max: float, radius: float,
-               period: float | None) -> tuple[float, float]:
+def _dt_limits(
+    elems: SurfaceElements,
+    material: Material,
+    mass: float,
+    omega_max: float,
+    radius: float,
+    period: float | None,
+) -> tuple[float, float]:
     """(largest accepted, default) time step [s]."""
     k_max = material.require_rft().zeta * elems.width * 2.0 * radius
     stiff = math.sqrt(mass / k_max)
@@ -383,11 +420,16 @@ class _Drive:
     omega_max: float
 
 
-def _drive(omega: float | None, omega_initial: float, ramp: float | None, step_time: float,
-           torque: float | None) -> _Drive:
+def _drive(
+    omega: float | None, omega_initial: float, ramp: float | None, step_time: float, torque: float | None
+) -> _Drive:
     if (omega is None) == (torque is None):
-        raise InputError("omega/torque", (omega, torque), "exactly one of omega= or torque=",
-                         "prescribe either the spin or the motor torque")
+        raise InputError(
+            "omega/torque",
+            (omega, torque),
+            "exactly one of omega= or torque=",
+            "prescribe either the spin or the motor torque",
+        )
     w0 = check_finite("omega_initial", omega_initial)
     t0 = check_positive("step_time", step_time, allow_zero=True)
     if torque is not None:
@@ -402,8 +444,13 @@ def _drive(omega: float | None, omega_initial: float, ramp: float | None, step_t
     return _Drive(0, w0, w1, rate, t0, 0.0, max(abs(w0), abs(w1)))
 
 
-def _initial_state(pose: Pose2D | None, velocity: float | tuple[float, float], outline: NDArray[np.float64],
-                   surface: float, omega0: float) -> NDArray[np.float64]:
+def _initial_state(
+    pose: Pose2D | None,
+    velocity: float | tuple[float, float],
+    outline: NDArray[np.float64],
+    surface: float,
+    omega0: float,
+) -> NDArray[np.float64]:
     if pose is None:
         pose = Pose2D(0.0, surface - float(outline[:, 1].min()), 0.0)
     elif not isinstance(pose, Pose2D):
@@ -510,8 +557,12 @@ def simulate_wheel(
     limit, default = _dt_limits(elems, material, mass, drive.omega_max, radius, period)
     dt = default if dt is None else check_positive("dt", dt)
     if dt > limit * (1 + 1e-12):
-        raise InputError("dt", dt, f"a step in (0, {limit:.4g}] s",
-                         "the limit of the implicit scheme for this body, mass and spin (stable_time_step)")
+        raise InputError(
+            "dt",
+            dt,
+            f"a step in (0, {limit:.4g}] s",
+            "the limit of the implicit scheme for this body, mass and spin (stable_time_step)",
+        )
     n_steps = round(duration / dt)
     if n_steps < 1 or n_steps > 50_000_000:
         raise InputError("duration", duration, f"between dt and {50_000_000 * dt:.3g} s")
@@ -524,55 +575,131 @@ def simulate_wheel(
     state0 = _initial_state(initial_pose, initial_velocity, outline, drft.surface_level, drive.omega_initial)
     rft = material.require_rft()
     is_wheel = getattr(body, "outer_radius", None) is not None
-    params = _kernel_params(drft, elems.width, is_wheel, radius, mass, inertia, gravity, drawbar_load, drive,
-                            tolerance)
+    params = _kernel_params(
+        drft, elems.width, is_wheel, radius, mass, inertia, gravity, drawbar_load, drive, tolerance
+    )
     out, stats = K.integrate_wheel_kernel(
-        elems.midpoints, elems.normals, elems.lengths, rft.coefficients.as_array(), outline, params,
-        state0, dt, n_steps, int(output_every))
-    return _result(out, stats, drft, is_wheel, radius, period, mass, inertia, gravity, drawbar_load, dt,
-                   material)
+        elems.midpoints,
+        elems.normals,
+        elems.lengths,
+        rft.coefficients.as_array(),
+        outline,
+        params,
+        state0,
+        dt,
+        n_steps,
+        int(output_every),
+    )
+    return _result(
+        out, stats, drft, is_wheel, radius, period, mass, inertia, gravity, drawbar_load, dt, material
+    )
 
 
-def _kernel_params(drft: DRFTModel, width: float, is_wheel: bool, radius: float, mass: float,
-                   inertia: float, gravity: float, drawbar_load: float, drive: _Drive,
-                   tolerance: float) -> NDArray[np.float64]:
+def _kernel_params(
+    drft: DRFTModel,
+    width: float,
+    is_wheel: bool,
+    radius: float,
+    mass: float,
+    inertia: float,
+    gravity: float,
+    drawbar_load: float,
+    drive: _Drive,
+    tolerance: float,
+) -> NDArray[np.float64]:
     """The ``params`` array of :func:`._dynamics_kernels.integrate_wheel_kernel`."""
     params = np.zeros(K.N_PARAMS)
     params[[K.P_WIDTH, K.P_SCALE, K.P_SURFACE, K.P_LAM_RHO]] = (
-        width, drft.material.require_rft().scale, drft.surface_level, drft.inertial_density)
+        width,
+        drft.material.require_rft().scale,
+        drft.surface_level,
+        drft.inertial_density,
+    )
     params[K.P_DROP_COEFF] = radius**2 / gravity if (drft.structural_correction and is_wheel) else 0.0
     params[[K.P_MASS, K.P_INERTIA, K.P_GRAVITY, K.P_DRAWBAR]] = (mass, inertia, gravity, drawbar_load)
     params[[K.P_MODE, K.P_OMEGA0, K.P_OMEGA1, K.P_RAMP, K.P_STEP_TIME, K.P_TORQUE]] = (
-        drive.mode, drive.omega_initial, drive.omega_target, drive.ramp, drive.step_time, drive.torque)
+        drive.mode,
+        drive.omega_initial,
+        drive.omega_target,
+        drive.ramp,
+        drive.step_time,
+        drive.torque,
+    )
     params[[K.P_RADIUS, K.P_RTOL, K.P_MAX_ITER, K.P_MAX_HALVINGS]] = (radius, tolerance, 25, 5)
     params[K.P_BAND] = _LEADING_BAND
     return params
 
 
-def _result(out: NDArray[np.float64], stats: NDArray[np.float64], drft: DRFTModel, is_wheel: bool,
-            radius: float, period: float | None, mass: float, inertia: float, gravity: float,
-            drawbar_load: float, dt: float, material: Material) -> WheelDynamicsResult:
+def _result(
+    out: NDArray[np.float64],
+    stats: NDArray[np.float64],
+    drft: DRFTModel,
+    is_wheel: bool,
+    radius: float,
+    period: float | None,
+    mass: float,
+    inertia: float,
+    gravity: float,
+    drawbar_load: float,
+    dt: float,
+    material: Material,
+) -> WheelDynamicsResult:
     if not np.all(np.isfinite(out)):
         raise SolverError("simulate_wheel: the integration produced non-finite values; reduce dt")
-    keys = ("force_evaluations", "jacobians", "steps", "substeps", "stuck_steps", "failed_steps",
-            "max_jump_residual_rel", "jump_steps")
+    keys = (
+        "force_evaluations",
+        "jacobians",
+        "steps",
+        "substeps",
+        "stuck_steps",
+        "failed_steps",
+        "max_jump_residual_rel",
+        "jump_steps",
+    )
     st = {k: float(v) for k, v in zip(keys, stats, strict=True)}
     if st["failed_steps"] > _MAX_FAILED_FRACTION * st["steps"]:
-        raise SolverError(f"simulate_wheel: Newton failed on {st['failed_steps']:.0f} of {st['steps']:.0f} "
-                          "steps even with substeps; reduce dt")
+        raise SolverError(
+            f"simulate_wheel: Newton failed on {st['failed_steps']:.0f} of {st['steps']:.0f} "
+            "steps even with substeps; reduce dt"
+        )
     name = "drft" if (drft.inertial_density > 0 or (drft.structural_correction and is_wheel)) else "rft"
+
     def col(j: int) -> NDArray[np.float64]:
         series = np.ascontiguousarray(out[:, j])
         series.setflags(write=False)
         return series
 
-    meta = {"material": material.name, "inertial_coefficient": drft.inertial_coefficient,
-            "density_kg_m3": drft.density, "structural_correction": drft.structural_correction and is_wheel,
-            "citation": "Agarwal, Karsai, Goldman, Kamrin, Sci. Adv. 7, eabe0631 (2021)"}
+    meta = {
+        "material": material.name,
+        "inertial_coefficient": drft.inertial_coefficient,
+        "density_kg_m3": drft.density,
+        "structural_correction": drft.structural_correction and is_wheel,
+        "citation": "Agarwal, Karsai, Goldman, Kamrin, Sci. Adv. 7, eabe0631 (2021)",
+    }
     return WheelDynamicsResult(
-        t=col(K.C_T), x=col(K.C_X), z=col(K.C_Z), theta=col(K.C_THETA), vx=col(K.C_VX), vz=col(K.C_VZ),
-        omega=col(K.C_OMEGA), fx=col(K.C_FX), fz=col(K.C_FZ), torque=col(K.C_TORQUE), slip=col(K.C_SLIP),
-        sinkage=col(K.C_SINKAGE), power=col(K.C_POWER), soil_torque=col(K.C_SOIL_TORQUE),
-        soil_work=col(K.C_WORK), model=name, nominal_radius=radius, rotation_period=period, mass=mass,
-        inertia=inertia, gravity=gravity, drawbar_load=drawbar_load, dt=dt, stats=st, metadata=meta,
+        t=col(K.C_T),
+        x=col(K.C_X),
+        z=col(K.C_Z),
+        theta=col(K.C_THETA),
+        vx=col(K.C_VX),
+        vz=col(K.C_VZ),
+        omega=col(K.C_OMEGA),
+        fx=col(K.C_FX),
+        fz=col(K.C_FZ),
+        torque=col(K.C_TORQUE),
+        slip=col(K.C_SLIP),
+        sinkage=col(K.C_SINKAGE),
+        power=col(K.C_POWER),
+        soil_torque=col(K.C_SOIL_TORQUE),
+        soil_work=col(K.C_WORK),
+        model=name,
+        nominal_radius=radius,
+        rotation_period=period,
+        mass=mass,
+        inertia=inertia,
+        gravity=gravity,
+        drawbar_load=drawbar_load,
+        dt=dt,
+        stats=st,
+        metadata=meta,
     )
