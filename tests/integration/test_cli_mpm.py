@@ -146,3 +146,22 @@ def test_mpm_wheel_study_quick(run_cli, tmp_path):
     assert rec["force_z_mpm_N"] == pytest.approx(130.0, rel=0.05)  # vertical equilibrium under the load
     assert rec["sinkage_mpm_m"] > 0 and rec["sinkage_rft_m"] > 0
     assert (tmp_path / "w" / "mpm_wheel.png").exists() and (tmp_path / "w" / "mpm_wheel.csv").exists()
+
+
+def test_mpm_wheel_warns_when_the_heap_reaches_the_end_of_a_short_bed(run_cli):
+    """A locked wheel towed 0.15 m heaps grains about 0.075 m ahead of its axle. On a 0.3 m bed the
+    heap reaches the bed's end, which holds it like a wall (pull -16.95 N against -11.96 N on the
+    default bed, load 10 N): one warning line naming --bed-length, the result still written, exit 0.
+    A bed shorter than the travel is refused."""
+    args = ["mpm", "wheel", "--load", "10", "--omega", "0", "--forward-speed", "0.3", "--radius", "0.04",
+            "--width", "0.05", "--cell-size", "0.01", "--duration", "0.5", "--format", "json"]  # fmt: skip
+    code, out, err = run_cli(*args, "--bed-length", "0.3")
+    assert code == 0, err
+    assert json.loads(out)["drawbar_pull_N"] < 0
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("terradyn: warning: the grains heaped"), err
+    assert "--bed-length above 0.3 m" in lines[0]
+    code, out, err = run_cli(*args)
+    assert code == 0 and "warning" not in err, err
+    code, _, err = run_cli(*args, "--bed-length", "0.1")
+    assert code == 1 and err.startswith("terradyn: error: --bed-length = 0.1 ") and "at least 0.23 m" in err

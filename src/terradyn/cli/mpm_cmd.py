@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -415,7 +416,14 @@ def wheel(
         None,
         "--window",
         help="Length [m] of the moving window of grains stepped around the wheel; 0 = the whole bed "
-        "(default: the wheel and its bed margin on either side).",
+        "(default: the wheel and its bed margin on either side; it grows ahead of the heap the wheel "
+        "pushes).",
+    ),
+    bed_length: float | None = typer.Option(
+        None,
+        "--bed-length",
+        help="Length [m] of the bed along the drive (default: the wheel's travel, its margins and room "
+        "ahead for the heap it pushes).",
     ),
     width: float = WHEEL_WIDTH,
     shape: str = typer.Option("circular", "--shape", help="Wheel shape: circular, grousered or flapped."),
@@ -472,7 +480,7 @@ def wheel(
             drive_torque=drive_torque,
             max_omega=max_omega,
             drawbar_load=drawbar_load,
-            bed=Bed(packing=packing, walls=walls, window=window),
+            bed=Bed(packing=packing, walls=walls, window=window, width=bed_length),
             resolution=Resolution(
                 cell_size=cell_size,
                 particles_per_cell=particles_per_cell,
@@ -492,6 +500,19 @@ def wheel(
     if outs.plot is not None:
         _plot_series(res, outs.plot, "wheel")
     emit(wheel_record(res.summary), fmt, outs.out)
+    _warn_if_heap_held(res.metadata)
+
+
+def _warn_if_heap_held(metadata: dict[str, Any]) -> None:
+    """One line on stderr when the heap the wheel pushed reached the end of the bed: the bed's end
+    then held it like a wall (docs/mpm.md, "The bow wave and the window's wall"), which moved the
+    pull of the wheel measured there by 11 % of its load. The result is still written."""
+    if metadata.get("heap_reached_bed_end"):
+        sys.stderr.write(
+            f"terradyn: warning: the grains heaped {metadata['heap_ahead_m']:.3g} m ahead of the wheel "
+            f"reached the end of the bed, which held them like a wall; rerun with a --bed-length above "
+            f"{metadata['bed_width_m']:.3g} m\n"
+        )
 
 
 #: the wheel quantities every wheel command reports, under the same keys (SI, unit-suffixed)

@@ -541,21 +541,32 @@ def _body_state(c: _Common, seg, pose, free, mass, load, width, inertia=None) ->
 
 
 def _window_metadata(runner: Runner) -> dict[str, Any]:
-    """A windowed run's bow-wave bookkeeping at its end: the window's length, how far ahead of the body
-    grains are heaped, and how much bed is left beyond them (less than the window's clearance: the
-    heap has reached the end of the bed, whose wall then holds it; lengthen the bed)."""
+    """A windowed run's bow-wave bookkeeping at its end: the window's length and clearance, with
+    :func:`heap_metadata` at that clearance."""
     if runner.window <= 0.0 or runner.window_clearance <= 0.0:
         return {}
+    return {
+        "window_clearance_m": runner.window_clearance,
+        "window_final_m": runner.grid.width,
+        **heap_metadata(runner, runner.window_clearance),
+    }
+
+
+def heap_metadata(runner: Runner, clearance: float) -> dict[str, Any]:
+    """How far ahead of the body grains are heaped at the end of a run, and how much bed is left beyond
+    them; less than ``clearance`` [m] means the heap has reached the end of the bed, whose wall then
+    holds it (lengthen the bed). Empty when nothing is heaped ahead."""
     x_body = float(runner.body.pose[0])
     toe = runner.heap_toe(x_body)
+    if toe is None:
+        return {}
     bed = runner.bed_grid
-    out: dict[str, Any] = {"window_clearance_m": runner.window_clearance, "window_final_m": runner.grid.width}
-    if toe is not None:
-        end = bed.x_left + bed.width if toe > x_body else bed.x_left
-        out["heap_ahead_m"] = abs(toe - x_body)
-        out["bed_beyond_heap_m"] = abs(end - toe)
-        out["heap_reached_bed_end"] = bool(abs(end - toe) < runner.window_clearance)
-    return out
+    end = bed.x_left + bed.width if toe > x_body else bed.x_left
+    return {
+        "heap_ahead_m": abs(toe - x_body),
+        "bed_beyond_heap_m": abs(end - toe),
+        "heap_reached_bed_end": bool(abs(end - toe) < clearance),
+    }
 
 
 def _metadata(runner: Runner, model: GranularModel, body: Body, eff: Body, wall: float) -> dict[str, Any]:

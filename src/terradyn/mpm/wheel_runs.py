@@ -31,6 +31,7 @@ from .runs import (
     _series,
     _settle_phases,
     _specs,
+    heap_metadata,
 )
 from .solver import BedGrid, Phase, stable_time_step
 from .specs import Bed, Drive, Outputs, Resolution
@@ -374,6 +375,8 @@ def run_wheel(
     if m.torque_mode:
         summary["applied_torque_Nm"] = m.torque
     meta = _metadata(runner, c.model, wheel, eff, wall)
+    if runner.window <= 0.0:  # the whole bed: its ends hold a heap as a window's wall did
+        meta.update(heap_metadata(runner, _wheel_margin(reach, h)))
     modes = ((m.torque_mode, "torque-driven"), (m.slip is not None, "forced-slip"), (m.towed, "towed"))
     meta["mode"] = next((name for on, name in modes if on), "self-propelled")
     return WheelResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())
