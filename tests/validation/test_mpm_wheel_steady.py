@@ -115,25 +115,3 @@ def test_the_self_propelled_slip_is_the_zero_of_the_forced_slip_pull():
     zero = 0.3 + 0.2 * (-low) / (high - low)
     assert 0.3 < free["slip"] < 0.5 and abs(free["slip"] - zero) < 0.05, (free, forced)
     assert forced[0.3]["sinkage_m"] < free["sinkage_m"] < forced[0.5]["sinkage_m"], (free, forced)
-
-
-@pytest.mark.slow
-def test_a_frictionless_rim_resists_alike_on_both_grids_where_the_frictional_pull_does_not():
-    """The lugged wheel's pull at slip 0.5 moves by 7 % of the load per refinement; the same wheel's
-    outer rim, frictionless and towed under the same load, does not: its resistance (-66.0 / -66.9 N)
-    and sinkage (64.4 / 66.9 mm) agree within 2 % and 5 % at 9 and 6.5 mm (docs/mpm.md, "A
-    frictionless rim converges"), and it carries no torque. About 7 and 20 min."""
-    rim, poppy = WheelCircular(0.106, 0.05), materials.get("poppy-cp")
-    load = 6.0 * 638.0 * 0.212**2 * 0.05 * 9.81
-    omega = 1.0 * math.sqrt(9.81 / 0.212)
-    drive = Drive(duration=5.0, spin_up=1.0)
-    runs = [
-        run_wheel(rim, poppy, load=load, omega=omega, slip=0.5, surface_friction=0.0,
-                  resolution=Resolution(cell_size=h, flip=0.99), drive=drive).summary
-        for h in (0.009, 0.0065)
-    ]  # fmt: skip
-    a, b = (r["drawbar_pull_N"] for r in runs)
-    assert a < -0.5 * load and b < -0.5 * load, runs
-    assert abs(a - b) < 0.02 * abs(a), runs
-    assert abs(runs[0]["sinkage_m"] - runs[1]["sinkage_m"]) < 0.05 * runs[0]["sinkage_m"], runs
-    assert all(abs(r["drive_torque_Nm"]) < 0.05 for r in runs), runs
