@@ -35,6 +35,33 @@ def test_converge_intrude_reports_runs_and_estimates(run_cli, tmp_path, monkeypa
     assert json.loads(out.read_text()) == rec and plot.stat().st_size > 10_000
 
 
+def test_converge_drag_passes_the_case_and_reports_drag_and_lift(run_cli, monkeypatch):
+    import terradyn.mpm as mpm
+
+    calls = []
+
+    def fake_run(body, material, *, resolution, bed, depth, distance, speed, angle, surface_friction):
+        assert (depth, distance, speed, angle, surface_friction) == (0.05, 0.04, -0.1, 0.0, 0.0)
+        assert bed == mpm.Bed() and body.radius == pytest.approx(0.0127)
+        calls.append(resolution.cell_size)
+        h = resolution.cell_size
+        return SimpleNamespace(summary={"drag_N": 3.0 + 100.0 * h**2, "lift_N": 0.6 - 20.0 * h})
+
+    monkeypatch.setattr(mpm, "run_drag", fake_run)
+    code, stdout, err = run_cli(
+        "mpm", "converge", "drag", "cylinder", "--radius", "0.0127", "--depth", "0.05", "--distance",
+        "0.04", "--speed", "-0.1", "--surface-friction", "0", "--cell-sizes", "0.004,0.002,0.001",
+        "--format", "json",
+    )  # fmt: skip
+    assert code == 0, err
+    assert calls == [0.004, 0.002, 0.001]
+    est = {e["quantity"]: e for e in json.loads(stdout)["estimates"]}
+    assert est["drag_N"]["observed_order"] == pytest.approx(2.0)
+    assert est["drag_N"]["extrapolated"] == pytest.approx(3.0)
+    assert est["lift_N"]["observed_order"] == pytest.approx(1.0)
+    assert est["lift_N"]["extrapolated"] == pytest.approx(0.6)
+
+
 @pytest.mark.parametrize("sizes", ["0.01,0.005", "0.01,0.01,0.005", "0.01,-0.005,0.002", "x"])
 def test_converge_needs_three_distinct_sizes(run_cli, sizes):
     code, _, err = run_cli("mpm", "converge", "intrude", "plate", "--length", "0.06", "--depth", "0.02",

@@ -624,6 +624,58 @@ def converge_intrude(
     _emit_convergence(res, fmt, out_path, plot_path, f"MPM {body.value} intrusion")
 
 
+@converge_app.command("drag")
+@with_flags("sizes", BODY_SIZE_FLAGS)
+def converge_drag_cmd(
+    body: BodyKind = typer.Argument(..., help="Body shape."),
+    depth: float = typer.Option(..., "--depth", help="Depth [m] of the body's reference point."),
+    distance: float = typer.Option(..., "--distance", help="Horizontal travel [m]."),
+    cell_sizes: str = CELL_SIZES,
+    speed: float = typer.Option(
+        0.05, "--speed", help="Horizontal velocity [m/s]: + drags along +x, - along -x."
+    ),
+    angle: float = ANGLE,
+    material: str = MATERIAL,
+    width: float = BodyOptions.width,
+    sizes: dict[str, Any] = {},  # the body size flags (BODY_SIZE_FLAGS)  # noqa: B006
+    particles_per_cell: int = MPMOptions.ppc,
+    volumetric: str = MPMOptions.volumetric,
+    flip: float = MPMOptions.flip,
+    packing: str = MPMOptions.packing,
+    walls: str | None = MPMOptions.walls,
+    surface_friction: float | None = MPMOptions.surface_friction,
+    grid_phases: int = GRID_PHASES,
+    fmt: OutputFormat = FORMAT,
+    out: str | None = OUT,
+    plot: str | None = typer.Option(None, "--plot", help="Results against cell size (.png/.pdf/.svg/.jpg)."),
+) -> None:
+    """Drag and lift of a buried body dragged through an MPM bed at several cell sizes, with their
+    converged estimates."""
+    from ..studies.convergence import converge_drag
+
+    out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
+    cells = _cell_sizes(cell_sizes)
+    shape = build_body(body, width, **sizes)
+    with fraction_progress("MPM convergence", "runs") as bar:
+        res = converge_drag(
+            shape,
+            materials.get(material),
+            cell_sizes=cells,
+            progress=lambda done, total: bar(done, done / total),
+            depth=depth,
+            distance=distance,
+            speed=check_finite("--speed", speed),
+            angle=math.radians(check_finite("--angle", angle)),
+            bed=Bed(packing=packing, walls=walls),
+            resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric, flip=flip),
+            grid_phases=grid_phases,
+            surface_friction=None
+            if surface_friction is None
+            else check_finite("--surface-friction", surface_friction),
+        )
+    _emit_convergence(res, fmt, out_path, plot_path, f"MPM {body.value} drag")
+
+
 @converge_app.command("wheel")
 @_mpm_wheel_flags()
 def converge_wheel_cmd(

@@ -43,6 +43,7 @@ __all__ = [
     "ConvergenceResult",
     "RichardsonEstimate",
     "converge",
+    "converge_drag",
     "converge_intrusion",
     "converge_wheel",
     "least_squares_limit",
@@ -408,4 +409,25 @@ def converge_wheel(
     run = _case_run(run_wheel, wheel, material, run_options, grid_phases)
 
     return converge(run, cell_sizes, quantities, progress=progress, metadata={"case": "wheel"},
+                    grid_phases=grid_phases)  # fmt: skip
+
+
+def converge_drag(
+    body: Any,
+    material: Any,
+    *,
+    cell_sizes: Sequence[float],
+    quantities: Sequence[str] = ("drag_N", "lift_N"),
+    progress: Callable[[int, int], None] | None = None,
+    grid_phases: int = 1,
+    **run_options: Any,
+) -> ConvergenceResult:
+    """:func:`terradyn.mpm.run_drag` of ``body`` (buried at ``depth=``, dragged ``distance=``) at each
+    cell size; other options (specs such as ``bed=``, ``resolution=``, ``stroke=``, flat keywords)
+    as there; ``grid_phases`` as in :func:`converge`."""
+    from ..mpm import run_drag
+
+    run = _case_run(run_drag, body, material, run_options, grid_phases)
+
+    return converge(run, cell_sizes, quantities, progress=progress, metadata={"case": "drag"},
                     grid_phases=grid_phases)  # fmt: skip
