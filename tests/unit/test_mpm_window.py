@@ -97,6 +97,9 @@ def test_the_window_grows_ahead_of_a_bow_wave_and_keeps_the_whole_beds_forces():
     assert meta["heap_ahead_m"] > 4 * 0.04
     assert not meta["heap_reached_bed_end"]
     assert meta["bed_beyond_heap_m"] >= meta["window_clearance_m"]
+    # the whole-bed run reports its heap as well (its bed's ends hold a heap as a window's wall did)
+    assert whole.metadata["heap_reached_bed_end"] is False
+    assert whole.metadata["heap_ahead_m"] == pytest.approx(meta["heap_ahead_m"], abs=2 * H)
     a, b = windowed.summary, whole.summary
     assert abs(a["drawbar_pull_N"] - b["drawbar_pull_N"]) < 0.02 * plow["load"]
     assert abs(a["sinkage_m"] - b["sinkage_m"]) < 0.1 * H
