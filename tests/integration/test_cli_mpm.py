@@ -165,3 +165,21 @@ def test_mpm_wheel_warns_when_the_heap_reaches_the_end_of_a_short_bed(run_cli):
     assert code == 0 and "warning" not in err, err
     code, _, err = run_cli(*args, "--bed-length", "0.1")
     assert code == 1 and err.startswith("terradyn: error: --bed-length = 0.1 ") and "at least 0.23 m" in err
+
+
+def test_mpm_wheel_warns_when_the_wheel_sinks_close_to_the_floor(run_cli):
+    """The locked wheel of the test above sinks 32 mm, 0.8 radii, leaving 3.2 reaches of grains on the
+    default bed (0.16 m deep; a 0.32 m bed moves its pull by 0.4 %): no warning there. On a 0.1 m bed
+    it has 1.7 reaches left, fewer than the depth rule was checked for (docs/mpm.md, "The floor under
+    a wheel that sinks"): one warning line naming --bed-depth and the metadata's flag, the result
+    still written, exit 0. A depth that is not positive is refused."""
+    args = ["mpm", "wheel", "--load", "10", "--omega", "0", "--forward-speed", "0.3", "--radius", "0.04",
+            "--width", "0.05", "--cell-size", "0.01", "--duration", "0.5", "--format", "json"]  # fmt: skip
+    code, out, err = run_cli(*args, "--bed-depth", "0.1")
+    assert code == 0, err
+    assert json.loads(out)["sinkage_m"] > 0.02
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("terradyn: warning: the wheel sank"), err
+    assert "--bed-depth above 0.1 m" in lines[0]
+    code, _, err = run_cli(*args, "--bed-depth", "0")
+    assert code == 1 and err.startswith("terradyn: error: --bed-depth = 0 ") and "> 0" in err

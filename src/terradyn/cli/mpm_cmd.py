@@ -381,6 +381,20 @@ def _mpm_wheel_flags() -> Any:
     return with_flags("sizes", {k: v for k, v in WHEEL_SIZE_FLAGS.items() if k != "points_file"})
 
 
+#: the wheel bed's size flags of `mpm wheel` and `mpm converge wheel`
+BED_LENGTH = typer.Option(
+    None,
+    "--bed-length",
+    help="Length [m] of the bed along the drive (default: the wheel's travel, its margins and room "
+    "ahead for the heap it pushes).",
+)
+BED_DEPTH = typer.Option(
+    None,
+    "--bed-depth",
+    help="Depth [m] of the bed's grains (default: two wheel reaches and the bed margin).",
+)
+
+
 @app.command("wheel")
 @_mpm_wheel_flags()
 def wheel(
@@ -419,12 +433,8 @@ def wheel(
         "(default: the wheel and its bed margin on either side; it grows ahead of the heap the wheel "
         "pushes).",
     ),
-    bed_length: float | None = typer.Option(
-        None,
-        "--bed-length",
-        help="Length [m] of the bed along the drive (default: the wheel's travel, its margins and room "
-        "ahead for the heap it pushes).",
-    ),
+    bed_length: float | None = BED_LENGTH,
+    bed_depth: float | None = BED_DEPTH,
     width: float = WHEEL_WIDTH,
     shape: str = typer.Option("circular", "--shape", help="Wheel shape: circular, grousered or flapped."),
     sizes: dict[str, Any] = {},  # the wheel size flags (MPM_WHEEL_SIZE_FLAGS)  # noqa: B006
@@ -480,7 +490,7 @@ def wheel(
             drive_torque=drive_torque,
             max_omega=max_omega,
             drawbar_load=drawbar_load,
-            bed=Bed(packing=packing, walls=walls, window=window, width=bed_length),
+            bed=Bed(packing=packing, walls=walls, window=window, width=bed_length, depth=bed_depth),
             resolution=Resolution(
                 cell_size=cell_size,
                 particles_per_cell=particles_per_cell,
@@ -501,6 +511,20 @@ def wheel(
         _plot_series(res, outs.plot, "wheel")
     emit(wheel_record(res.summary), fmt, outs.out)
     _warn_if_heap_held(res.metadata)
+    _warn_if_floor_near(res.metadata)
+
+
+def _warn_if_floor_near(metadata: dict[str, Any]) -> None:
+    """One line on stderr when the wheel sank closer to the bed's floor than the depth rule was
+    checked for (docs/mpm.md, "The floor under a wheel that sinks"): a frictionless rim that sank
+    past its radius dug itself in on the default bed and levelled off on a deeper one. The result
+    is still written."""
+    if metadata.get("floor_near"):
+        sys.stderr.write(
+            f"terradyn: warning: the wheel sank {metadata['deepest_sinkage_m']:.3g} m, leaving "
+            f"{metadata['floor_below_wheel_m']:.3g} m of grains above the floor, less than the depth "
+            f"rule was checked for; rerun with a --bed-depth above {metadata['bed_depth_m']:.3g} m\n"
+        )
 
 
 def _warn_if_heap_held(metadata: dict[str, Any]) -> None:
@@ -695,6 +719,8 @@ def converge_wheel_cmd(
     volumetric: str = MPMOptions.volumetric,
     flip: float = MPMOptions.flip,
     packing: str = MPMOptions.packing,
+    bed_length: float | None = BED_LENGTH,
+    bed_depth: float | None = BED_DEPTH,
     grid_phases: int = GRID_PHASES,
     fmt: OutputFormat = FORMAT,
     out: str | None = OUT,
@@ -715,7 +741,7 @@ def converge_wheel_cmd(
             load=load,
             omega=omega,
             slip=slip,
-            bed=Bed(packing=packing),
+            bed=Bed(packing=packing, width=bed_length, depth=bed_depth),
             resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric, flip=flip),
             drive=Drive(duration=duration, spin_up=spin_up),
             grid_phases=grid_phases,

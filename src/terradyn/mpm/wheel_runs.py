@@ -67,6 +67,29 @@ def _wheel_margin(reach: float, cell_size: float) -> float:
     return max(2.0 * reach, 4.0 * cell_size)
 
 
+#: Grains [reaches] below the deepest point a wheel reached under which its bed's floor is flagged
+#: (``floor_near``). Measured (docs/mpm.md, "The floor under a wheel that sinks"): with 3.2 and 3.4
+#: reaches left (a locked wheel towed at 0.8 radii of sinkage; the frictional rim of the high-speed
+#: study) a deeper bed moved the pull by under 2 % of the load; the frictionless rim read within 6 %
+#: of the load with 3.8 reaches left and 4 % with 4.9, and on the default bed, with 2.9 left at the
+#: depth where the deeper beds held it, it dug itself in through the floor. A rule for the cases
+#: measured, not a bound.
+FLOOR_CLEARANCE_REACHES = 3.0
+
+
+def floor_metadata(sinkage: np.ndarray, bed_depth: float, reach: float) -> dict[str, Any]:
+    """How close the wheel came to the bed's floor: its deepest sinkage [m] over the run, the grains
+    left below it, and ``floor_near`` when they are fewer than :data:`FLOOR_CLEARANCE_REACHES`
+    reaches (deepen the bed)."""
+    deepest = float(np.max(sinkage)) if len(sinkage) else 0.0
+    below = bed_depth - deepest
+    return {
+        "deepest_sinkage_m": deepest,
+        "floor_below_wheel_m": below,
+        "floor_near": bool(below < FLOOR_CLEARANCE_REACHES * reach),
+    }
+
+
 def _bow_wave_allowance(reach: float, travel: float) -> float:
     """Bed [m] a wheel bed keeps ahead of the wheel's final position beyond its margin, for the heap
     it pushes: in plane strain grains cannot flow round the wheel, so a wheel that leaves a rut drives a
@@ -303,7 +326,9 @@ def run_wheel(
     leaves max(2 reaches, 4 cells) of grains beyond the wheel's path and below two reaches, and
     max(4 reaches, travel / 2) more ahead for the heap the wheel pushes; its ``width`` is the bed
     length. The moving window (``bed.window``) grows ahead of that heap; the metadata's
-    ``heap_reached_bed_end`` is true when the heap has reached the end of the bed (lengthen it).
+    ``heap_reached_bed_end`` is true when the heap has reached the end of the bed (lengthen it);
+    ``floor_near`` when the wheel sank to within :data:`FLOOR_CLEARANCE_REACHES` reaches of the
+    bed's floor (deepen it: ``Bed(depth=...)``).
     The resolution needs 8 cells across the wheel by default.
     ``outputs`` intervals are in seconds of simulated time (record: duration / 200, snapshots:
     duration / 20). The flat keywords of earlier releases (``cell_size=``, ``duration=``,
@@ -377,6 +402,7 @@ def run_wheel(
     meta = _metadata(runner, c.model, wheel, eff, wall)
     if runner.window <= 0.0:  # the whole bed: its ends hold a heap as a window's wall did
         meta.update(heap_metadata(runner, _wheel_margin(reach, h)))
+    meta.update(floor_metadata(series["sinkage_m"], grid.depth, reach))
     modes = ((m.torque_mode, "torque-driven"), (m.slip is not None, "forced-slip"), (m.towed, "towed"))
     meta["mode"] = next((name for on, name in modes if on), "self-propelled")
     return WheelResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())
