@@ -510,33 +510,18 @@ def wheel(
     if outs.plot is not None:
         _plot_series(res, outs.plot, "wheel")
     emit(wheel_record(res.summary), fmt, outs.out)
-    _warn_if_heap_held(res.metadata)
-    _warn_if_floor_near(res.metadata)
+    _warn_bed_outgrown(res.metadata)
 
 
-def _warn_if_floor_near(metadata: dict[str, Any]) -> None:
-    """One line on stderr when the wheel sank closer to the bed's floor than the depth rule was
-    checked for (docs/mpm.md, "The floor under a wheel that sinks"): a frictionless rim that sank
-    past its radius dug itself in on the default bed and levelled off on a deeper one. The result
+def _warn_bed_outgrown(metadata: dict[str, Any]) -> None:
+    """One line on stderr for each way the wheel outgrew its bed (:func:`~terradyn.mpm.wheel_runs.bed_limits`:
+    a heap held by the bed's end, which moved a wheel's pull by 11 % of its load, or a wheel that sank
+    closer to the floor than the depth rule was checked for), naming the flag to enlarge. The result
     is still written."""
-    if metadata.get("floor_near"):
-        sys.stderr.write(
-            f"terradyn: warning: the wheel sank {metadata['deepest_sinkage_m']:.3g} m, leaving "
-            f"{metadata['floor_below_wheel_m']:.3g} m of grains above the floor, less than the depth "
-            f"rule was checked for; rerun with a --bed-depth above {metadata['bed_depth_m']:.3g} m\n"
-        )
+    from ..mpm.wheel_runs import bed_limits
 
-
-def _warn_if_heap_held(metadata: dict[str, Any]) -> None:
-    """One line on stderr when the heap the wheel pushed reached the end of the bed: the bed's end
-    then held it like a wall (docs/mpm.md, "The bow wave and the window's wall"), which moved the
-    pull of the wheel measured there by 11 % of its load. The result is still written."""
-    if metadata.get("heap_reached_bed_end"):
-        sys.stderr.write(
-            f"terradyn: warning: the grains heaped {metadata['heap_ahead_m']:.3g} m ahead of the wheel "
-            f"reached the end of the bed, which held them like a wall; rerun with a --bed-length above "
-            f"{metadata['bed_width_m']:.3g} m\n"
-        )
+    for text, size, at_least in bed_limits(metadata):
+        sys.stderr.write(f"terradyn: warning: {text}; rerun with a --bed-{size} above {at_least:.3g} m\n")
 
 
 #: the wheel quantities every wheel command reports, under the same keys (SI, unit-suffixed)

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from ..report.registry import Finding, ItemOutput, register_row
-from .report_rows import _Setting
+from .report_rows import _Setting, bed_outgrown_finding
 
 __all__ = ["alpha_map", "high_speed", "plate_depth"]
 
@@ -260,6 +260,7 @@ def _spin_run(wheel: Any, mat: Any, load: float, om: float, sp: _Spin, spin_up: 
         "sinkage_m": float(sink[last].mean()),
         "rate": float(np.polyfit(t[late], sink[late], 1)[0]),
         "speed": float(vx[last].mean()),
+        "metadata": res.metadata,
     }
 
 
@@ -324,6 +325,9 @@ def high_speed(quick: bool) -> ItemOutput:
             )
         )
     out.tables["high_speed"] = rows
+    outgrown = bed_outgrown_finding({f"omega sqrt(l/g) = {w:g}": r["metadata"] for w, r in runs.items()})
+    if outgrown is not None:
+        out.findings.append(outgrown)
     if len(rows) >= 2:
         slips = [row["slip_mpm"] for row in rows]
         rising = all(b >= a for a, b in itertools.pairwise(slips))
@@ -383,6 +387,11 @@ def _start_history(out: ItemOutput, axes: Any, wheel: Any, mat: Any, load: float
             wheel, mat, load, om, sp, 0.0, full, initial_speed=ramped["speed"]
         ),
     }
+    outgrown = bed_outgrown_finding(
+        {f"start {label}": r["metadata"] for label, r in starts.items() if r is not ramped}
+    )
+    if outgrown is not None:
+        out.findings.append(outgrown)
     rows = []
     for k, (label, r) in enumerate(starts.items()):
         axes[0].plot(r["t"], r["sinkage"] * 1e3, color=f"C{k}", label=label)

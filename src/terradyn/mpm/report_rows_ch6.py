@@ -21,6 +21,7 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 from ..report.registry import Finding, ItemOutput, register_row
+from .report_rows import bed_outgrown_finding
 
 __all__ = ["flapped_self_propelled", "wheel_b_force_slip"]
 
@@ -62,12 +63,14 @@ def wheel_b_force_slip(quick: bool) -> ItemOutput:
     effective = wheel_body("B")
     radius = 0.5 * float(spec.outer_diameter_m)  # type: ignore[arg-type]
     rows: list[dict[str, Any]] = []
+    beds: dict[str, dict[str, Any]] = {}
     for name in s.media:
         mat = materials.get(name)
         for slip in s.slips:
             res = run_wheel(physical, mat, load=load, omega=s.omega, slip=slip,
                             resolution=Resolution(cell_size=s.cell_size),
                             drive=Drive(duration=s.duration))  # fmt: skip
+            beds[f"{name}, slip {slip:g}"] = res.metadata
             m = res.summary
             st = wheel_steady(effective, mat, load, slip, omega=s.omega, phase_count=6 if quick else 16)
             rows.append({"material": name, "slip": slip, "sinkage_mpm_m": m["sinkage_m"],
@@ -101,6 +104,9 @@ def wheel_b_force_slip(quick: bool) -> ItemOutput:
         settings={"wheel": "B", "load_N": load, "mpm_lugs": "physical", "rft_lugs": "effective", **asdict(s)},
         tables={"force_slip": rows},
     )
+    outgrown = bed_outgrown_finding(beds)
+    if outgrown is not None:
+        out.findings.append(outgrown)
     for r in rows:
         tq = r["drive_torque_mpm_Nm"] / r["drive_torque_rft_Nm"]
         dp = r["drawbar_pull_mpm_N"] - r["drawbar_pull_rft_N"]
@@ -176,6 +182,7 @@ def flapped_self_propelled(quick: bool) -> ItemOutput:
     mat = materials.get(_FLAP_MEDIUM)
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), layout="constrained")
     rows: list[dict[str, Any]] = []
+    beds: dict[str, dict[str, Any]] = {}
     for k, (count, ratio) in enumerate(s.designs):
         wheel = WheelFlapped(hub_radius=_FLAP_HUB, width=_FLAP_WIDTH, flap_count=count,
                              flap_length=ratio * _FLAP_HUB)  # fmt: skip
@@ -190,6 +197,7 @@ def flapped_self_propelled(quick: bool) -> ItemOutput:
         res = run_wheel(wheel, mat, load=_FLAP_LOAD, omega=_FLAP_OMEGA,
                         resolution=Resolution(cell_size=s.cell_size), drive=Drive(duration=s.duration),
                         outputs=Outputs(record_interval=s.duration / 90))  # fmt: skip
+        beds[f"{count} flaps, L / r = {ratio:g}"] = res.metadata
         ser = res.series
         d = ser["phase"] == "drive"
         t, vx, sink = ser["time_s"][d], ser["vx_m_s"][d], ser["sinkage_m"][d]
@@ -230,6 +238,9 @@ def flapped_self_propelled(quick: bool) -> ItemOutput:
         },
         tables={"flapped": rows},
     )
+    outgrown = bed_outgrown_finding(beds)
+    if outgrown is not None:
+        out.findings.append(outgrown)
     for r in rows:
         dv = r["velocity_normalised_mpm"] - r["velocity_normalised_rft"]
         key = f"{r['flap_count']}_flaps_L{r['flap_length_ratio']:g}"

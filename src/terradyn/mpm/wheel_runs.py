@@ -90,6 +90,31 @@ def floor_metadata(sinkage: np.ndarray, bed_depth: float, reach: float) -> dict[
     }
 
 
+def bed_limits(metadata: dict[str, Any]) -> list[tuple[str, str, float]]:
+    """Each way a wheel run (its ``metadata``) outgrew its bed, as (what happened, the bed size to
+    enlarge: ``"length"`` or ``"depth"``, its present value [m]): the heap the wheel pushed reached
+    the end of the bed, which then held it like a wall (docs/mpm.md, "The bow wave and the window's
+    wall"), or the wheel sank closer to the floor than :data:`FLOOR_CLEARANCE_REACHES` ("The floor
+    under a wheel that sinks"). Empty when neither happened."""
+    out = []
+    if metadata.get("heap_reached_bed_end"):
+        out.append((
+            f"the grains heaped {metadata['heap_ahead_m']:.3g} m ahead of the wheel reached the end of the "
+            "bed, which held them like a wall",
+            "length",
+            float(metadata["bed_width_m"]),
+        ))  # fmt: skip
+    if metadata.get("floor_near"):
+        out.append((
+            f"the wheel sank {metadata['deepest_sinkage_m']:.3g} m, leaving "
+            f"{metadata['floor_below_wheel_m']:.3g} m of grains above the floor, less than the depth "
+            "rule was checked for",
+            "depth",
+            float(metadata["bed_depth_m"]),
+        ))  # fmt: skip
+    return out
+
+
 def _bow_wave_allowance(reach: float, travel: float) -> float:
     """Bed [m] a wheel bed keeps ahead of the wheel's final position beyond its margin, for the heap
     it pushes: in plane strain grains cannot flow round the wheel, so a wheel that leaves a rut drives a
