@@ -520,8 +520,8 @@ def _warn_bed_outgrown(metadata: dict[str, Any]) -> None:
     is still written."""
     from ..mpm.wheel_runs import bed_limits
 
-    for text, size, at_least in bed_limits(metadata):
-        sys.stderr.write(f"terradyn: warning: {text}; rerun with a --bed-{size} above {at_least:.3g} m\n")
+    for text, size, present in bed_limits(metadata):
+        sys.stderr.write(f"terradyn: warning: {text}; rerun with a --bed-{size} above {present:.3g} m\n")
 
 
 #: the wheel quantities every wheel command reports, under the same keys (SI, unit-suffixed)
