@@ -64,7 +64,7 @@ def test_quick_wedge_row_builds_beside_rft(wedge_report):
 def test_a_wheel_row_names_the_runs_that_outgrew_their_bed():
     """The wheel rows turn each run's bed flags (heap at the bed's end, wheel close to the floor) into
     one finding naming the run, the way `terradyn mpm wheel` warns; runs that fit add nothing."""
-    from terradyn.mpm.report_rows import bed_outgrown_finding
+    from terradyn.mpm.report_rows import bed_outgrown_findings
     from terradyn.mpm.wheel_runs import FLOOR_CLEARANCE_REACHES, floor_metadata
 
     reach, depth = 0.1, 0.4
@@ -73,8 +73,8 @@ def test_a_wheel_row_names_the_runs_that_outgrew_their_bed():
     held = {"heap_reached_bed_end": True, "heap_ahead_m": 0.5, "bed_width_m": 2.0, **fits}
     assert FLOOR_CLEARANCE_REACHES == 3.0  # 0.09 m deep leaves 3.1 reaches, 0.11 m leaves 2.9
     assert not fits["floor_near"] and deep["floor_near"]
-    assert bed_outgrown_finding({"a": fits}) is None
-    finding = bed_outgrown_finding({"a": fits, "b": deep, "c": held})
-    assert finding is not None and finding.verdict == "info"
+    assert bed_outgrown_findings({"a": fits}) == []
+    [finding] = bed_outgrown_findings({"a": fits, "b": deep, "c": held})
+    assert finding.verdict == "info"
     assert "b: the wheel sank 0.11 m, leaving 0.29 m" in finding.text
     assert "c: the grains heaped 0.5 m ahead" in finding.text and "a:" not in finding.text

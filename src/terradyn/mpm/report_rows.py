@@ -25,19 +25,21 @@ _MATERIAL = "MS"
 _K = 4.0
 
 
-def bed_outgrown_finding(runs: dict[str, dict[str, Any]]) -> Finding | None:
+def bed_outgrown_findings(runs: dict[str, dict[str, Any]]) -> list[Finding]:
     """One finding naming the wheel runs (label -> run metadata) that outgrew their bed
-    (:func:`~terradyn.mpm.wheel_runs.bed_limits`), or None when none did."""
+    (:func:`~terradyn.mpm.wheel_runs.bed_limits`), or none when none did."""
     from .wheel_runs import bed_limits
 
     parts = [f"{label}: {text}" for label, meta in runs.items() for text, _, _ in bed_limits(meta)]
     if not parts:
-        return None
-    return Finding(
-        "bed outgrown, so these readings depend on the bed's size (docs/mpm.md, sections on the floor "
-        "under a wheel that sinks and on the bow wave): " + "; ".join(parts),
-        "info",
-    )
+        return []
+    return [
+        Finding(
+            "bed outgrown, so these readings depend on the bed's size (docs/mpm.md, sections on the floor "
+            "under a wheel that sinks and on the bow wave): " + "; ".join(parts),
+            "info",
+        )
+    ]
 
 
 @dataclass(frozen=True)

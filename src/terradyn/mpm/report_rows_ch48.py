@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from ..report.registry import Finding, ItemOutput, register_row
-from .report_rows import _Setting, bed_outgrown_finding
+from .report_rows import _Setting, bed_outgrown_findings
 
 __all__ = ["alpha_map", "high_speed", "plate_depth"]
 
@@ -325,9 +325,9 @@ def high_speed(quick: bool) -> ItemOutput:
             )
         )
     out.tables["high_speed"] = rows
-    outgrown = bed_outgrown_finding({f"omega sqrt(l/g) = {w:g}": r["metadata"] for w, r in runs.items()})
-    if outgrown is not None:
-        out.findings.append(outgrown)
+    out.findings.extend(
+        bed_outgrown_findings({f"omega sqrt(l/g) = {w:g}": r["metadata"] for w, r in runs.items()})
+    )
     if len(rows) >= 2:
         slips = [row["slip_mpm"] for row in rows]
         rising = all(b >= a for a, b in itertools.pairwise(slips))
@@ -387,11 +387,11 @@ def _start_history(out: ItemOutput, axes: Any, wheel: Any, mat: Any, load: float
             wheel, mat, load, om, sp, 0.0, full, initial_speed=ramped["speed"]
         ),
     }
-    outgrown = bed_outgrown_finding(
-        {f"start {label}": r["metadata"] for label, r in starts.items() if r is not ramped}
+    out.findings.extend(
+        bed_outgrown_findings(
+            {f"start {label}": r["metadata"] for label, r in starts.items() if r is not ramped}
+        )
     )
-    if outgrown is not None:
-        out.findings.append(outgrown)
     rows = []
     for k, (label, r) in enumerate(starts.items()):
         axes[0].plot(r["t"], r["sinkage"] * 1e3, color=f"C{k}", label=label)

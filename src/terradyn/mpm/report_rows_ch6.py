@@ -21,7 +21,7 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 from ..report.registry import Finding, ItemOutput, register_row
-from .report_rows import bed_outgrown_finding
+from .report_rows import bed_outgrown_findings
 
 __all__ = ["flapped_self_propelled", "wheel_b_force_slip"]
 
@@ -104,9 +104,7 @@ def wheel_b_force_slip(quick: bool) -> ItemOutput:
         settings={"wheel": "B", "load_N": load, "mpm_lugs": "physical", "rft_lugs": "effective", **asdict(s)},
         tables={"force_slip": rows},
     )
-    outgrown = bed_outgrown_finding(beds)
-    if outgrown is not None:
-        out.findings.append(outgrown)
+    out.findings.extend(bed_outgrown_findings(beds))
     for r in rows:
         tq = r["drive_torque_mpm_Nm"] / r["drive_torque_rft_Nm"]
         dp = r["drawbar_pull_mpm_N"] - r["drawbar_pull_rft_N"]
@@ -238,9 +236,7 @@ def flapped_self_propelled(quick: bool) -> ItemOutput:
         },
         tables={"flapped": rows},
     )
-    outgrown = bed_outgrown_finding(beds)
-    if outgrown is not None:
-        out.findings.append(outgrown)
+    out.findings.extend(bed_outgrown_findings(beds))
     for r in rows:
         dv = r["velocity_normalised_mpm"] - r["velocity_normalised_rft"]
         key = f"{r['flap_count']}_flaps_L{r['flap_length_ratio']:g}"
