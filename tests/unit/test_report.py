@@ -182,6 +182,35 @@ def test_a_plugged_row_runs_and_dem_rows_need_terradyn_dem(tmp_path, monkeypatch
     assert "dem" in [m for m, _ in registry.rows_of(plate)]
 
 
+def test_wheel_c_is_b_without_lugs_and_both_run_in_the_wheel_rows(quick_report):
+    """Table 6.2 lists all three wheels with sources; C's stand-in is B's outer cylinder, so the lugs are
+    the only difference, and in RFT they add drawbar pull on every medium. The MPM row runs both."""
+    from terradyn.errors import InputError
+    from terradyn.report.wheels_abc import WHEELS, wheel_body
+
+    _, run = quick_report
+    (table,) = run.results[("tab-6-2", "theory")]["tables"].values()
+    assert [r["wheel"] for r in table] == ["A", "B", "C"]
+    assert all(r["outer_diameter_m"] and r["width_m"] and r["source"] for r in table)
+    b, c = WHEELS[1], WHEELS[2]
+    assert (c.outer_diameter_m, c.width_m, c.loads_N, c.grousers) == (
+        b.outer_diameter_m,
+        b.width_m,
+        b.loads_N,
+        0,
+    )
+    assert wheel_body("C").radius == pytest.approx(wheel_body("B").outer_radius)
+    with pytest.raises(InputError, match="A, B or C"):
+        wheel_body("D")
+    rft = run.results[("ch6-wheels-bc", "rft")]
+    assert set(rft["figures"]) == {"wheel_b_force_slip", "wheel_c_force_slip"}
+    gains = {k: v for k, v in rft["metrics"].items() if k.startswith("lug_pull_gain_")}
+    assert len(gains) == 4 and all(v > 0 for v in gains.values())
+    mpm = run.results[("ch6-wheels-bc", "mpm")]
+    assert {r["wheel"] for r in mpm["tables"]["force_slip"]} == {"B", "C"}
+    assert any(f["text"].startswith("lugs, MS") for f in mpm["findings"])
+
+
 def test_quick_flapped_mpm_row_sets_mpm_beside_rft(quick_report):
     _, run = quick_report
     r = run.results[("ch6-flapped", "mpm")]

@@ -16,7 +16,7 @@ MPM_ROWS = {
     "fig-4-1": "terradyn.mpm.report_rows_ch48:alpha_map",
     "ch4-plate-depth": "terradyn.mpm.report_rows_ch48:plate_depth",
     "ch8-high-speed": "terradyn.mpm.report_rows_ch48:high_speed",
-    "ch6-wheels-bc": "terradyn.mpm.report_rows_ch6:wheel_b_force_slip",
+    "ch6-wheels-bc": "terradyn.mpm.report_rows_ch6:wheels_bc_force_slip",
     "ch6-flapped": "terradyn.mpm.report_rows_ch6:flapped_self_propelled",
 }
 

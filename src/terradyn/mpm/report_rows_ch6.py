@@ -1,12 +1,12 @@
 """MPM rows of chapter 6 of the reproduction report (``terradyn reproduce``): wheel B in forced slip
 and the self-propelled flapped wheel.
 
-``ch6-wheels-bc``: wheel B of :mod:`terradyn.report.wheels_abc` (the 212 mm grousered wheel of
-Agarwal et al. 2021, 15 lugs) under forced slip, MPM beside the RFT steady solve of the same wheel.
-MPM resolves the physical lugs (18 mm x 4 mm, terradyn's assumption); RFT uses the effective lugs of
-:mod:`terradyn.studies.high_speed` (a third of their height: the soil shadowed between lugs), as the
-RFT and Wong-Reece row of the item does. Wheel C has no public specification and is not run. The row
-is ``wheel_b_force_slip(quick) -> ItemOutput``; every number in a finding comes from the run.
+``ch6-wheels-bc``: wheels B and C of :mod:`terradyn.report.wheels_abc` (the 212 mm grousered wheel of
+Agarwal et al. 2021, 15 lugs, and terradyn's stand-in for C, the same rim without lugs) under forced
+slip, MPM beside the RFT steady solve of the same wheel. MPM resolves B's physical lugs (18 mm x 4 mm,
+terradyn's assumption); RFT uses the effective lugs of :mod:`terradyn.studies.high_speed` (a third of
+their height: the soil shadowed between lugs), as the RFT and Wong-Reece row of the item does. The row
+is ``wheels_bc_force_slip(quick) -> ItemOutput``; every number in a finding comes from the run.
 
 ``ch6-flapped``: flapped wheels of the ``flapped-wheels`` study (hub radius 50 mm, 50 mm wide, radial
 zero-thickness flaps) self-propelled under 10 N on CPS, MPM beside the quasi-static RFT performance of
@@ -23,7 +23,7 @@ from typing import Any
 from ..report.registry import Finding, ItemOutput, register_row
 from .report_rows import bed_outgrown_findings
 
-__all__ = ["flapped_self_propelled", "wheel_b_force_slip"]
+__all__ = ["flapped_self_propelled", "wheels_bc_force_slip"]
 
 
 @dataclass(frozen=True)
@@ -45,10 +45,9 @@ _QUICK = _ForceSlip(("MS",), (0.3,), 0.0265, 0.6, 2.0)
 _FULL = _ForceSlip(("MS", "CPS"), (0.1, 0.3, 0.5), 0.0065, 4.5, 1.0)
 
 
-def wheel_b_force_slip(quick: bool) -> ItemOutput:
-    """Wheel B (212 mm, 15 lugs) at its lighter load under forced slip: MPM against RFT."""
-    import matplotlib.pyplot as plt
-
+def wheels_bc_force_slip(quick: bool) -> ItemOutput:
+    """Wheels B (212 mm, 15 lugs) and C (B's rim without lugs) at their lighter load under forced slip:
+    MPM against RFT, and what the lugs add in each."""
     from .. import materials
     from ..locomotion.steady import wheel_steady
     from ..report.wheels_abc import WHEELS, wheel_body
@@ -57,61 +56,56 @@ def wheel_b_force_slip(quick: bool) -> ItemOutput:
     from .wheel_runs import run_wheel
 
     s = _QUICK if quick else _FULL
-    spec = WHEELS[1]
-    load = float(spec.loads_N[0])
-    physical = HighSpeedWheel(effective_grousers=False).body()
-    effective = wheel_body("B")
-    radius = 0.5 * float(spec.outer_diameter_m)  # type: ignore[arg-type]
+    load = float(WHEELS[1].loads_N[0])
+    radius = 0.5 * float(WHEELS[1].outer_diameter_m)  # type: ignore[arg-type]
+    # (MPM body, RFT body): B's lugs are resolved in MPM and effective in RFT; C is one cylinder
+    bodies = {
+        "B": (HighSpeedWheel(effective_grousers=False).body(), wheel_body("B")),
+        "C": (wheel_body("C"), wheel_body("C")),
+    }
     rows: list[dict[str, Any]] = []
     beds: dict[str, dict[str, Any]] = {}
-    for name in s.media:
-        mat = materials.get(name)
-        for slip in s.slips:
-            res = run_wheel(physical, mat, load=load, omega=s.omega, slip=slip,
-                            resolution=Resolution(cell_size=s.cell_size),
-                            drive=Drive(duration=s.duration))  # fmt: skip
-            beds[f"{name}, slip {slip:g}"] = res.metadata
-            m = res.summary
-            st = wheel_steady(effective, mat, load, slip, omega=s.omega, phase_count=6 if quick else 16)
-            rows.append({"material": name, "slip": slip, "sinkage_mpm_m": m["sinkage_m"],
-                         "sinkage_rft_m": st.sinkage_m, "drawbar_pull_mpm_N": m["drawbar_pull_N"],
-                         "drawbar_pull_rft_N": st.drawbar_pull_N, "drive_torque_mpm_Nm": m["drive_torque_Nm"],
-                         "drive_torque_rft_Nm": st.drive_torque_Nm})  # fmt: skip
-    fig, axes = plt.subplots(1, 3, figsize=(14, 3.8), layout="constrained")
-    for k, name in enumerate(s.media):
-        sel = [r for r in rows if r["material"] == name]
-        x = [r["slip"] for r in sel]
-        for ax, key, scale in ((axes[0], "drawbar_pull", 1.0), (axes[1], "drive_torque", 1.0),
-                               (axes[2], "sinkage", 1e3)):  # fmt: skip
-            unit = {"drawbar_pull": "N", "drive_torque": "Nm", "sinkage": "m"}[key]
-            ax.plot(
-                x, [r[f"{key}_mpm_{unit}"] * scale for r in sel], "o-", color=f"C{k}", label=f"{name} MPM"
-            )
-            ax.plot(
-                x, [r[f"{key}_rft_{unit}"] * scale for r in sel], "s--", color=f"C{k}", label=f"{name} RFT"
-            )
-    for ax, label in zip(axes, ("drawbar pull [N]", "drive torque [N m]", "sinkage [mm]"), strict=True):
-        ax.set_xlabel("slip [-]")
-        ax.set_ylabel(label)
-        ax.grid(True, alpha=0.35)
-        ax.legend(fontsize=8)
+    for wheel, (physical, rft_body) in bodies.items():
+        for name in s.media:
+            mat = materials.get(name)
+            for slip in s.slips:
+                res = run_wheel(physical, mat, load=load, omega=s.omega, slip=slip,
+                                resolution=Resolution(cell_size=s.cell_size),
+                                drive=Drive(duration=s.duration))  # fmt: skip
+                beds[f"wheel {wheel}, {name}, slip {slip:g}"] = res.metadata
+                m = res.summary
+                st = wheel_steady(rft_body, mat, load, slip, omega=s.omega, phase_count=6 if quick else 16)
+                rows.append({"wheel": wheel, "material": name, "slip": slip, "sinkage_mpm_m": m["sinkage_m"],
+                             "sinkage_rft_m": st.sinkage_m, "drawbar_pull_mpm_N": m["drawbar_pull_N"],
+                             "drawbar_pull_rft_N": st.drawbar_pull_N,
+                             "drive_torque_mpm_Nm": m["drive_torque_Nm"],
+                             "drive_torque_rft_Nm": st.drive_torque_Nm})  # fmt: skip
+    fig = _force_slip_figure(rows, bodies, s)
     fig.suptitle(
-        f"Wheel B (212 mm, 15 lugs), {load:g} N, forced slip: MPM (physical lugs, {s.cell_size * 1e3:g} mm "
-        f"cells, {s.duration:g} s at {s.omega:g} rad/s) and the RFT steady solve (effective lugs)"
+        f"Wheels B (212 mm, 15 lugs) and C (B's rim without lugs), {load:g} N, forced slip\nMPM "
+        f"({s.cell_size * 1e3:g} mm cells, {s.duration:g} s at {s.omega:g} rad/s; B's lugs physical) and "
+        "the RFT steady solve (B's lugs effective)"
     )
     out = ItemOutput(
-        figures={"wheel_b_mpm": fig},
-        settings={"wheel": "B", "load_N": load, "mpm_lugs": "physical", "rft_lugs": "effective", **asdict(s)},
+        figures={"wheels_bc_mpm": fig},
+        settings={
+            "wheels": ["B", "C (stand-in)"],
+            "load_N": load,
+            "mpm_lugs": "physical",
+            "rft_lugs": "effective",
+            **asdict(s),
+        },
         tables={"force_slip": rows},
     )
     out.findings.extend(bed_outgrown_findings(beds))
     for r in rows:
         tq = r["drive_torque_mpm_Nm"] / r["drive_torque_rft_Nm"]
         dp = r["drawbar_pull_mpm_N"] - r["drawbar_pull_rft_N"]
-        out.metrics[f"{r['material']}_torque_ratio_slip{r['slip']:g}"] = tq
+        out.metrics[f"{r['wheel']}_{r['material']}_torque_ratio_slip{r['slip']:g}"] = tq
         out.findings.append(
             Finding(
-                f"{r['material']}, slip {r['slip']:g}: torque MPM {r['drive_torque_mpm_Nm']:.2f} N m, RFT "
+                f"wheel {r['wheel']}, {r['material']}, slip {r['slip']:g}: torque MPM "
+                f"{r['drive_torque_mpm_Nm']:.2f} N m, RFT "
                 f"{r['drive_torque_rft_Nm']:.2f} N m (ratio {tq:.2f}); drawbar pull MPM "
                 f"{r['drawbar_pull_mpm_N']:+.1f} N, RFT {r['drawbar_pull_rft_N']:+.1f} N "
                 f"({dp / load:+.0%} of the load); sinkage MPM {r['sinkage_mpm_m'] * 1e3:.1f} mm, RFT "
@@ -121,6 +115,7 @@ def wheel_b_force_slip(quick: bool) -> ItemOutput:
                 else ("agrees" if abs(tq - 1.0) <= 0.15 and abs(dp) <= 0.05 * load else "disagrees"),
             )
         )
+    out.findings.extend(_lug_findings(rows, load))
     if quick:
         out.findings.append(
             Finding(
@@ -128,8 +123,55 @@ def wheel_b_force_slip(quick: bool) -> ItemOutput:
                 "info",
             )
         )
-    out.findings.append(Finding("Wheel C: no public specification, not run (0 runs)", "info"))
+    out.findings.append(
+        Finding("wheel C is terradyn's stand-in (B's rim without lugs), not the thesis's wheel C", "info")
+    )
     return out
+
+
+def _lug_findings(rows: list[dict[str, Any]], load: float) -> list[Finding]:
+    """Drawbar pull of B less C at each medium and slip, in MPM and in RFT (the lugs' share)."""
+    out = []
+    by = {(r["wheel"], r["material"], r["slip"]): r for r in rows}
+    for (wheel, name, slip), b in by.items():
+        c = by.get(("C", name, slip))
+        if wheel != "B" or c is None:
+            continue
+        gain = {k: b[f"drawbar_pull_{k}_N"] - c[f"drawbar_pull_{k}_N"] for k in ("mpm", "rft")}
+        out.append(
+            Finding(
+                f"lugs, {name}, slip {slip:g}: B less C drawbar pull MPM {gain['mpm']:+.1f} N "
+                f"({gain['mpm'] / load:+.0%} of the load), RFT {gain['rft']:+.1f} N "
+                f"({gain['rft'] / load:+.0%})",
+                "info",
+            )
+        )
+    return out
+
+
+def _force_slip_figure(rows: list[dict[str, Any]], bodies: dict[str, Any], s: _ForceSlip) -> Any:
+    """One row of three axes (pull, torque, sinkage versus slip) per wheel; colour per medium."""
+    import matplotlib.pyplot as plt
+
+    fig, grid = plt.subplots(len(bodies), 3, figsize=(14, 3.6 * len(bodies) + 0.5), layout="constrained",
+                             squeeze=False)  # fmt: skip
+    for axes, wheel in zip(grid, bodies, strict=True):
+        for k, name in enumerate(s.media):
+            sel = [r for r in rows if r["material"] == name and r["wheel"] == wheel]
+            x = [r["slip"] for r in sel]
+            quantities = (("drawbar_pull", "N", 1.0), ("drive_torque", "Nm", 1.0), ("sinkage", "m", 1e3))
+            for ax, (key, unit, scale) in zip(axes, quantities, strict=True):
+                ax.plot(x, [r[f"{key}_mpm_{unit}"] * scale for r in sel], "o-", color=f"C{k}",
+                        label=f"{name} MPM")  # fmt: skip
+                ax.plot(x, [r[f"{key}_rft_{unit}"] * scale for r in sel], "s--", color=f"C{k}",
+                        label=f"{name} RFT")  # fmt: skip
+        for ax, label in zip(axes, ("drawbar pull [N]", "drive torque [N m]", "sinkage [mm]"), strict=True):
+            ax.set_title(f"wheel {wheel}: {label.split(' [')[0]}")
+            ax.set_xlabel("slip [-]")
+            ax.set_ylabel(label)
+            ax.grid(True, alpha=0.35)
+            ax.legend(fontsize=8)
+    return fig
 
 
 @dataclass(frozen=True)
@@ -273,5 +315,5 @@ def flapped_self_propelled(quick: bool) -> ItemOutput:
     return out
 
 
-register_row("ch6-wheels-bc", "mpm", "terradyn.mpm.report_rows_ch6:wheel_b_force_slip")
+register_row("ch6-wheels-bc", "mpm", "terradyn.mpm.report_rows_ch6:wheels_bc_force_slip")
 register_row("ch6-flapped", "mpm", "terradyn.mpm.report_rows_ch6:flapped_self_propelled")

@@ -173,7 +173,8 @@ def wheels_table(quick: bool) -> ItemOutput:
         findings=[
             Finding(
                 "Table 6.2 and the paper's wheel table are not public: A and B are the closest documented "
-                f"wheels (sources per row); C is not defined; {len(rows)} rows",
+                "wheels (sources per row); C is a stand-in, B's rim without lugs; "
+                f"{len(rows)} rows",
                 "info",
             )
         ],
@@ -240,42 +241,82 @@ def wheel_a_force_slip(quick: bool) -> ItemOutput:
 
 
 def wheels_bc_force_slip(quick: bool) -> ItemOutput:
-    from ..geometry import WheelCircular
+    """Wheels B (15 effective lugs) and C (B's rim without lugs) in forced slip on the four media: RFT
+    for both, Wong-Reece for the smooth cylinder (wheel C; it has no lug model, so it stands for B too)."""
     from ..locomotion import force_slip_sweep
     from ..locomotion.models import ModelSpec
     from ..plotting import new_force_slip_figure, plot_force_slip
     from ..results import TableResult
     from .wheels_abc import WHEELS, wheel_body
 
-    spec = WHEELS[1]
+    spec_b, spec_c = WHEELS[1], WHEELS[2]
     slips = np.round(np.linspace(-0.5, 0.7, 4 if quick else 13), 10)
     mats = [materials.get(m) for m in _MEDIA]
-    body = wheel_body("B")
-    rft = force_slip_sweep(
-        body, mats, {"rft": ModelSpec("rft")}, spec.loads_N, slips, phase_count=6 if quick else 16
+    rft = {"rft": ModelSpec("rft")}
+    rft_b = force_slip_sweep(
+        wheel_body("B"), mats, rft, spec_b.loads_N, slips, phase_count=6 if quick else 16
     )
-    smooth = WheelCircular(0.5 * float(spec.outer_diameter_m), float(spec.width_m))  # type: ignore[arg-type]
-    wr = force_slip_sweep(smooth, mats, {"wong-reece": ModelSpec("wong-reece")}, spec.loads_N, slips)
-    cols = {k: np.concatenate([np.asarray(rft.columns[k]), np.asarray(wr.columns[k])]) for k in rft.columns}
-    t = TableResult(cols, {"wheel": "B"})
-    fig, axes = new_force_slip_figure(len(_MEDIA))
-    for row, name in zip(axes, _MEDIA, strict=True):
-        plot_force_slip(t.columns, material=name, axes=row)
-    fig.suptitle(
-        "Wheel B (212 mm, 15 effective lugs): RFT (solid); Wong-Reece on the smooth 212 mm cylinder (dashed)"
+    rft_c = force_slip_sweep(wheel_body("C"), mats, rft, spec_c.loads_N, slips)
+    wr = force_slip_sweep(
+        wheel_body("C"), mats, {"wong-reece": ModelSpec("wong-reece")}, spec_c.loads_N, slips
     )
+    tables = {}
+    for name, part in (("B", rft_b), ("C", rft_c)):
+        cols = {
+            k: np.concatenate([np.asarray(part.columns[k]), np.asarray(wr.columns[k])]) for k in part.columns
+        }
+        tables[name] = TableResult(cols, {"wheel": name})
+    figures = {}
+    titles = {
+        "B": "Wheel B (212 mm, 15 effective lugs): RFT (solid); Wong-Reece on B's smooth 212 mm cylinder "
+        "(dashed)",
+        "C": "Wheel C (stand-in: B's 212 mm rim without lugs): RFT (solid) and Wong-Reece (dashed)",
+    }
+    for name, t in tables.items():
+        fig, axes = new_force_slip_figure(len(_MEDIA))
+        for row, medium in zip(axes, _MEDIA, strict=True):
+            plot_force_slip(t.columns, material=medium, axes=row)
+        fig.suptitle(titles[name])
+        figures[f"wheel_{name.lower()}_force_slip"] = fig
     out = ItemOutput(
-        figures={"wheel_b_force_slip": fig},
+        figures=figures,
         settings={
-            "wheel": "B",
-            "loads_N": list(spec.loads_N),
+            "wheels": ["B", "C (stand-in)"],
+            "loads_N": list(spec_b.loads_N),
             "slips": slips.tolist(),
-            "wong_reece_body": "smooth cylinder of B's outer diameter and width",
+            "wong_reece_body": "smooth cylinder of B's outer diameter and width (= wheel C)",
         },
     )
-    _force_slip_findings(t, out, "B")
-    out.findings.append(Finding("Wheel C: no public specification, not run", "info"))
+    for name, t in tables.items():
+        _force_slip_findings(t, out, name)
+    _lug_findings(tables["B"], tables["C"], out)
     return out
+
+
+def _lug_findings(t_b: Any, t_c: Any, out: ItemOutput) -> None:
+    """What B's lugs add to C's drawbar pull in RFT, at the lighter load and slip 0.3."""
+    for name in _MEDIA:
+        pulls = []
+        for t in (t_b, t_c):
+            c = t.columns
+            m = (c["material"] == name) & (c["model"] == "rft") & c["solved"].astype(bool)
+            m &= c["load_N"] == np.min(c["load_N"])
+            if not np.any(m):
+                break
+            k = np.nonzero(m)[0][int(np.argmin(np.abs(c["slip"][m] - 0.3)))]
+            pulls.append((float(c["slip"][k]), float(c["load_N"][k]), float(c["drawbar_pull_N"][k])))
+        if len(pulls) < 2:
+            out.findings.append(Finding(f"lugs, {name}: B or C not solved by RFT", "disagrees"))
+            continue
+        (s, load, dp_b), (_, _, dp_c) = pulls
+        out.metrics[f"lug_pull_gain_{name}_N"] = dp_b - dp_c
+        out.findings.append(
+            Finding(
+                f"lugs, {name}, W = {load:g} N, s = {s:.2f}: RFT drawbar pull B {dp_b:+.1f} N, "
+                f"C {dp_c:+.1f} N (lugs add {dp_b - dp_c:+.1f} N, {(dp_b - dp_c) / load:+.0%} of the load)",
+                "info",
+            )
+        )
 
 
 def flapped(quick: bool) -> ItemOutput:

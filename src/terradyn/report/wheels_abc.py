@@ -12,8 +12,11 @@ each number comes from:
 * **B**: the grousered wheel of Agarwal, Karsai, Goldman & Kamrin (Sci. Adv. 2021) on poppy seeds:
   outer diameter 212 mm and 15 lugs (published); lug height 18 mm, thickness 4 mm and width 50 mm are
   terradyn assumptions (see :mod:`terradyn.studies.high_speed`), modelled with effective lugs.
-* **C**: no public description was found; terradyn does not invent one. The report lists it as
-  undefined.
+* **C**: no public description was found. terradyn's stand-in is the closest documented wheel it can
+  build without inventing a number: wheel B's rim without its lugs, a rigid smooth cylinder of B's
+  published outer diameter (212 mm) and assumed width (50 mm), at B's loads. B and C then differ only
+  by the lugs, and C is the smooth rim that docs/mpm.md studies at rest, under slip and at a fixed
+  depth. It is a stand-in, not the thesis's wheel C: the report says so wherever C appears.
 """
 
 from __future__ import annotations
@@ -59,13 +62,20 @@ WHEELS: tuple[WheelDefinition, ...] = (
         "terradyn assumptions; 84 N = mass ratio 6 on poppy seeds (rho_c = 638 kg/m^3), 42 N half of it",
     ),
     WheelDefinition(
-        "C", "not public", None, None, None, (), "no public specification found; not defined by terradyn"
+        "C",
+        "rigid smooth (stand-in: wheel B without lugs)",
+        0.212,
+        0.05,
+        0,
+        (42.0, 84.0),
+        "not public: terradyn's stand-in is B's rim without lugs; outer diameter as B (Agarwal et al. "
+        "2021), width and loads as B (terradyn assumptions)",
     ),
 )
 
 
 def wheel_body(name: str) -> Any:
-    """The terradyn body of wheel ``name`` (A or B)."""
+    """The terradyn body of wheel ``name`` (A, B or C; C is the smooth stand-in of the module doc)."""
     from ..errors import InputError
     from ..geometry import WheelCircular
     from ..studies.high_speed import HighSpeedWheel
@@ -74,4 +84,7 @@ def wheel_body(name: str) -> Any:
         return WheelCircular(0.13, 0.16)
     if name == "B":
         return HighSpeedWheel().body()
-    raise InputError("wheel", name, "A or B (wheel C has no public specification)")
+    if name == "C":
+        spec = WHEELS[2]
+        return WheelCircular(0.5 * float(spec.outer_diameter_m), float(spec.width_m))  # type: ignore[arg-type]
+    raise InputError("wheel", name, "A, B or C")
