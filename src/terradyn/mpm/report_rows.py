@@ -457,62 +457,67 @@ def footing(quick: bool) -> ItemOutput:
 
 # ------------------------------------------------------------------- chapter 6: wheel force-slip
 def wheel_force_slip(quick: bool) -> ItemOutput:
-    """Wheel A (0.13 m x 0.16 m, 130 N) on MS under forced slip: MPM against the RFT steady solve."""
+    """Wheel A (0.13 m x 0.16 m, 130 N) under forced slip, MPM against the RFT steady solve: on MS in
+    the quick form, on the four media of Fig. 6-8 in the full form."""
     import matplotlib.pyplot as plt
 
     from ..studies.mpm_compare import mpm_wheel_versus_rft
 
-    # quick: one slip, 25 mm cells (10 across the wheel), 1 s drive at 2 rad/s (a smoke run);
-    # full: the resolution study of docs/mpm.md (11 mm cells, 4 s drive at 1 rad/s, slips 0.1-0.5)
+    # quick: MS, one slip, 25 mm cells (10 across the wheel), 1 s drive at 2 rad/s (a smoke run);
+    # full: the resolution study of docs/mpm.md (11 mm cells, 4 s drive at 1 rad/s, slips 0.1-0.5) on
+    # each medium of Fig. 6-8
     if quick:
+        media: tuple[str, ...] = (_MATERIAL,)
         setting: dict[str, Any] = dict(slips=(0.3,), omega=2.0, cell_size=0.025, duration=1.0)
     else:
+        media = ("MS", "MMS", "LPS", "CPS")
         setting = dict(slips=(0.1, 0.3, 0.5), omega=1.0, cell_size=0.011, duration=4.0)
-    t = mpm_wheel_versus_rft(_MATERIAL, radius=0.13, width=0.16, load=130.0, **setting)
-    c = t.columns
-    slips = np.asarray(c["slip"])
+    rows: list[dict[str, Any]] = []
+    for name in media:
+        t = mpm_wheel_versus_rft(name, radius=0.13, width=0.16, load=130.0, **setting)
+        rows += [{"material": name, **r} for r in t.records()]
     fig, axes = plt.subplots(1, 3, figsize=(14, 3.8), layout="constrained")
-    for ax, key, scale, ylabel in (
-        (axes[0], "drawbar_pull", 1.0, "drawbar pull [N]"),
-        (axes[1], "drive_torque", 1.0, "drive torque [N m]"),
-        (axes[2], "sinkage", 1e3, "sinkage [mm]"),
-    ):
-        unit = "Nm" if key == "drive_torque" else ("m" if key == "sinkage" else "N")
-        ax.plot(slips, np.asarray(c[f"{key}_mpm_{unit}"]) * scale, "o-", label="MPM")
-        ax.plot(slips, np.asarray(c[f"{key}_rft_{unit}"]) * scale, "s--", label="RFT steady solve")
+    for k, name in enumerate(media):
+        sel = [r for r in rows if r["material"] == name]
+        slips = [r["slip"] for r in sel]
+        quantities = (("drawbar_pull", "N", 1.0), ("drive_torque", "Nm", 1.0), ("sinkage", "m", 1e3))
+        for ax, (key, unit, scale) in zip(axes, quantities, strict=True):
+            ax.plot(slips, [r[f"{key}_mpm_{unit}"] * scale for r in sel], "o-", color=f"C{k}",
+                    label=f"{name} MPM")  # fmt: skip
+            ax.plot(slips, [r[f"{key}_rft_{unit}"] * scale for r in sel], "s--", color=f"C{k}",
+                    label=f"{name} RFT steady solve")  # fmt: skip
+    for ax, ylabel in zip(axes, ("drawbar pull [N]", "drive torque [N m]", "sinkage [mm]"), strict=True):
         ax.set_xlabel("slip [-]")
         ax.set_ylabel(ylabel)
         ax.grid(True, alpha=0.35)
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7, ncols=2 if len(media) > 2 else 1)
     fig.suptitle(
-        f"Wheel A (r = 0.13 m, b = 0.16 m), {_MATERIAL}, 130 N: MPM at {setting['cell_size'] * 1e3:g} mm "
-        f"cells, {setting['duration']:g} s drive at {setting['omega']:g} rad/s"
+        f"Wheel A (r = 0.13 m, b = 0.16 m), {', '.join(media)}, 130 N: MPM at "
+        f"{setting['cell_size'] * 1e3:g} mm cells, {setting['duration']:g} s drive at "
+        f"{setting['omega']:g} rad/s"
     )
-    rows = t.records()
     out = ItemOutput(
         figures={"wheel_mpm": fig},
-        settings={"material": _MATERIAL, "radius_m": 0.13, "width_m": 0.16, "load_N": 130.0, **setting},
+        settings={"media": list(media), "radius_m": 0.13, "width_m": 0.16, "load_N": 130.0, **setting},
         tables={"force_slip": rows},
     )
     for r in rows:
         tq = r["drive_torque_mpm_Nm"] / r["drive_torque_rft_Nm"]
-        out.metrics[f"torque_ratio_slip{r['slip']:g}"] = tq
-        out.metrics[f"pull_difference_slip{r['slip']:g}_N"] = (
-            r["drawbar_pull_mpm_N"] - r["drawbar_pull_rft_N"]
-        )
+        dp = r["drawbar_pull_mpm_N"] - r["drawbar_pull_rft_N"]
+        out.metrics[f"{r['material']}_torque_ratio_slip{r['slip']:g}"] = tq
+        out.metrics[f"{r['material']}_pull_difference_slip{r['slip']:g}_N"] = dp
         out.findings.append(
             Finding(
-                f"slip {r['slip']:g}: torque MPM {r['drive_torque_mpm_Nm']:.2f} N m, RFT "
+                f"{r['material']}, slip {r['slip']:g}: torque MPM {r['drive_torque_mpm_Nm']:.2f} N m, RFT "
                 f"{r['drive_torque_rft_Nm']:.2f} N m (ratio {tq:.2f}); sinkage MPM "
                 f"{r['sinkage_mpm_m'] * 1e3:.1f} mm, RFT {r['sinkage_rft_m'] * 1e3:.1f} mm",
                 "agrees" if abs(tq - 1.0) <= 0.15 else "disagrees",
             )
         )
-        dp = r["drawbar_pull_mpm_N"] - r["drawbar_pull_rft_N"]
         out.findings.append(
             Finding(
-                f"slip {r['slip']:g}: drawbar pull MPM {r['drawbar_pull_mpm_N']:+.1f} N, RFT "
-                f"{r['drawbar_pull_rft_N']:+.1f} N ({dp:+.1f} N, {dp / 130.0:+.0%} of the load)",
+                f"{r['material']}, slip {r['slip']:g}: drawbar pull MPM {r['drawbar_pull_mpm_N']:+.1f} N, "
+                f"RFT {r['drawbar_pull_rft_N']:+.1f} N ({dp:+.1f} N, {dp / 130.0:+.0%} of the load)",
                 "agrees" if abs(dp) <= 0.05 * 130.0 else "disagrees",
             )
         )
