@@ -321,3 +321,31 @@ def test_weighted_eta_counts_what_is_left_not_rows(monkeypatch, capsys):
     assert lines[0] == "work: expected 0:16:40 (row times: test)"
     assert re.fullmatch(r"work: 1/2 done \(cheap\), elapsed 0:00:10, ETA 0:16:30", lines[1])
     assert lines[2].endswith("2/2 done (dear), elapsed 0:00:20, ETA 0:00:00")
+
+
+def test_the_chapter_table_counts_verdicts_and_quotes_whole_findings():
+    """The summary row of an item: the count of agreeing verdicts, the disagreeing findings first, and
+    findings quoted whole (never cut mid-number), with the number left out said."""
+    from terradyn.report import ITEMS
+    from terradyn.report.render import SUMMARY_CHARS, summary_rows
+
+    it = next(i for i in ITEMS if i.key == "ch4-plate-depth")
+    long = "x" * (SUMMARY_CHARS // 3)
+    findings = [
+        {"text": f"agrees one 1.00 {long}", "verdict": "agrees"},
+        {"text": "context only 3.0", "verdict": "info"},
+        {"text": f"disagrees one 0.23 {long}", "verdict": "disagrees"},
+        {"text": f"agrees two 2.00 {long}", "verdict": "agrees"},
+    ]
+    results = {(it.key, "rft"): {"status": "ran", "findings": findings}}
+    (row,) = summary_rows([it], results)
+    assert row["agrees"] == "partly (2 of 3)"
+    assert row["numbers"].startswith("disagrees one 0.23")
+    assert f"agrees one 1.00 {long}" in row["numbers"] and "agrees two" not in row["numbers"]
+    assert row["numbers"].endswith("; 1 more under the item")
+    assert "context only" not in row["numbers"]
+    only_info = {(it.key, "rft"): {"status": "ran", "findings": [findings[1]]}}
+    assert summary_rows([it], only_info)[0]["agrees"] == "-"
+    assert summary_rows([it], {})[0]["agrees"] == "not run"
+    agreeing = {(it.key, "rft"): {"status": "ran", "findings": [findings[0]]}}
+    assert summary_rows([it], agreeing)[0]["agrees"] == "yes (1 of 1)"

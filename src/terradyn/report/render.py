@@ -46,10 +46,15 @@ def _model_rows(it: ThesisItem, results: dict[tuple[str, str], dict[str, Any]]) 
     return out
 
 
+#: the chapter table quotes whole findings up to about this many characters, then says how many more
+SUMMARY_CHARS = 400
+
+
 def summary_rows(
     items: list[ThesisItem], results: dict[tuple[str, str], dict[str, Any]]
 ) -> list[dict[str, Any]]:
-    """The chapter-by-chapter table: item, models (with status), agrees?, numbers."""
+    """The chapter-by-chapter table: item, models (with status), agrees? (with the count of verdicts) and
+    the numbers: whole findings, the disagreeing ones first, never cut inside a finding."""
     rows = []
     for it in items:
         models, findings = [], []
@@ -57,19 +62,26 @@ def summary_rows(
             models.append(f"{_MODEL_NAMES.get(m['model'], m['model'])} ({m['status']})")
             if m["result"] and m["result"].get("status") == "ran":
                 findings += m["result"]["findings"]
-        verdicts = {f["verdict"] for f in findings}
-        agrees = (
-            "no"
-            if "disagrees" in verdicts and "agrees" not in verdicts
-            else "partly"
-            if "disagrees" in verdicts
-            else "yes"
-            if "agrees" in verdicts
-            else "-"
-            if findings
-            else "not run"
-        )
-        numbers = "; ".join(f["text"] for f in findings if f["verdict"] != "info")[:400]
+        judged = [f for f in findings if f["verdict"] != "info"]
+        n_agree = sum(f["verdict"] == "agrees" for f in judged)
+        if not findings:
+            agrees = "not run"
+        elif not judged:
+            agrees = "-"
+        else:
+            word = "yes" if n_agree == len(judged) else "no" if n_agree == 0 else "partly"
+            agrees = f"{word} ({n_agree} of {len(judged)})"
+        ordered = [f for f in judged if f["verdict"] == "disagrees"] + [
+            f for f in judged if f["verdict"] == "agrees"
+        ]
+        quoted: list[str] = []
+        for f in ordered:
+            if quoted and sum(len(q) + 2 for q in quoted) + len(f["text"]) > SUMMARY_CHARS:
+                break
+            quoted.append(f["text"])
+        numbers = "; ".join(quoted)
+        if len(quoted) < len(ordered):
+            numbers += f"; {len(ordered) - len(quoted)} more under the item"
         rows.append(
             {
                 "chapter": it.chapter,
