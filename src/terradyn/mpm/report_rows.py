@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -456,6 +457,39 @@ def footing(quick: bool) -> ItemOutput:
 
 
 # ------------------------------------------------------------------- chapter 6: wheel force-slip
+def force_slip_axes(
+    axes: Any,
+    rows: list[dict[str, Any]],
+    media: Sequence[str],
+    *,
+    rft_label: str = "RFT",
+    title: str = "",
+    legend: bool = True,
+) -> None:
+    """Drawbar pull, drive torque and sinkage against slip on three ``axes``: MPM solid, RFT dashed,
+    one colour per medium of ``media``; ``rows`` hold ``material``, ``slip`` and the ``*_mpm_*`` /
+    ``*_rft_*`` values of the wheel rows. ``legend``: one legend for the figure, below the axes (the
+    figure needs constrained layout), so it never covers a curve."""
+    quantities = (("drawbar_pull", "N", 1.0), ("drive_torque", "Nm", 1.0), ("sinkage", "m", 1e3))
+    for k, name in enumerate(media):
+        sel = [r for r in rows if r["material"] == name]
+        slips = [r["slip"] for r in sel]
+        for ax, (key, unit, scale) in zip(axes, quantities, strict=True):
+            for model, style, label in (("mpm", "o-", "MPM"), ("rft", "s--", rft_label)):
+                values = [r[f"{key}_{model}_{unit}"] * scale for r in sel]
+                ax.plot(slips, values, style, color=f"C{k}", label=f"{name} {label}")
+    for ax, ylabel in zip(axes, ("drawbar pull [N]", "drive torque [N m]", "sinkage [mm]"), strict=True):
+        if title:
+            ax.set_title(f"{title}: {ylabel.split(' [')[0]}")
+        ax.set_xlabel("slip [-]")
+        ax.set_ylabel(ylabel)
+        ax.grid(True, alpha=0.35)
+    if legend:
+        handles, labels = axes[0].get_legend_handles_labels()
+        ncols = min(len(labels), 8)
+        axes[0].figure.legend(handles, labels, loc="outside lower center", ncols=ncols, fontsize=8)
+
+
 def wheel_force_slip(quick: bool) -> ItemOutput:
     """Wheel A (0.13 m x 0.16 m, 130 N) under forced slip, MPM against the RFT steady solve: on MS in
     the quick form, on the four media of Fig. 6-8 in the full form."""
@@ -477,20 +511,7 @@ def wheel_force_slip(quick: bool) -> ItemOutput:
         t = mpm_wheel_versus_rft(name, radius=0.13, width=0.16, load=130.0, **setting)
         rows += [{"material": name, **r} for r in t.records()]
     fig, axes = plt.subplots(1, 3, figsize=(14, 3.8), layout="constrained")
-    for k, name in enumerate(media):
-        sel = [r for r in rows if r["material"] == name]
-        slips = [r["slip"] for r in sel]
-        quantities = (("drawbar_pull", "N", 1.0), ("drive_torque", "Nm", 1.0), ("sinkage", "m", 1e3))
-        for ax, (key, unit, scale) in zip(axes, quantities, strict=True):
-            ax.plot(slips, [r[f"{key}_mpm_{unit}"] * scale for r in sel], "o-", color=f"C{k}",
-                    label=f"{name} MPM")  # fmt: skip
-            ax.plot(slips, [r[f"{key}_rft_{unit}"] * scale for r in sel], "s--", color=f"C{k}",
-                    label=f"{name} RFT steady solve")  # fmt: skip
-    for ax, ylabel in zip(axes, ("drawbar pull [N]", "drive torque [N m]", "sinkage [mm]"), strict=True):
-        ax.set_xlabel("slip [-]")
-        ax.set_ylabel(ylabel)
-        ax.grid(True, alpha=0.35)
-        ax.legend(fontsize=7, ncols=2 if len(media) > 2 else 1)
+    force_slip_axes(axes, rows, media, rft_label="RFT steady solve")
     fig.suptitle(
         f"Wheel A (r = 0.13 m, b = 0.16 m), {', '.join(media)}, 130 N: MPM at "
         f"{setting['cell_size'] * 1e3:g} mm cells, {setting['duration']:g} s drive at "

@@ -21,7 +21,7 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 from ..report.registry import Finding, ItemOutput, register_row
-from .report_rows import bed_outgrown_findings
+from .report_rows import bed_outgrown_findings, force_slip_axes
 
 __all__ = ["flapped_self_propelled", "wheels_bc_force_slip"]
 
@@ -155,22 +155,9 @@ def _force_slip_figure(rows: list[dict[str, Any]], bodies: dict[str, Any], s: _F
 
     fig, grid = plt.subplots(len(bodies), 3, figsize=(14, 3.6 * len(bodies) + 0.5), layout="constrained",
                              squeeze=False)  # fmt: skip
-    for axes, wheel in zip(grid, bodies, strict=True):
-        for k, name in enumerate(s.media):
-            sel = [r for r in rows if r["material"] == name and r["wheel"] == wheel]
-            x = [r["slip"] for r in sel]
-            quantities = (("drawbar_pull", "N", 1.0), ("drive_torque", "Nm", 1.0), ("sinkage", "m", 1e3))
-            for ax, (key, unit, scale) in zip(axes, quantities, strict=True):
-                ax.plot(x, [r[f"{key}_mpm_{unit}"] * scale for r in sel], "o-", color=f"C{k}",
-                        label=f"{name} MPM")  # fmt: skip
-                ax.plot(x, [r[f"{key}_rft_{unit}"] * scale for r in sel], "s--", color=f"C{k}",
-                        label=f"{name} RFT")  # fmt: skip
-        for ax, label in zip(axes, ("drawbar pull [N]", "drive torque [N m]", "sinkage [mm]"), strict=True):
-            ax.set_title(f"wheel {wheel}: {label.split(' [')[0]}")
-            ax.set_xlabel("slip [-]")
-            ax.set_ylabel(label)
-            ax.grid(True, alpha=0.35)
-            ax.legend(fontsize=8)
+    for k, (axes, wheel) in enumerate(zip(grid, bodies, strict=True)):
+        sel = [r for r in rows if r["wheel"] == wheel]
+        force_slip_axes(axes, sel, s.media, title=f"wheel {wheel}", legend=k == len(bodies) - 1)
     return fig
 
 
