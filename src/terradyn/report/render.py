@@ -71,9 +71,7 @@ def summary_rows(
         else:
             word = "yes" if n_agree == len(judged) else "no" if n_agree == 0 else "partly"
             agrees = f"{word} ({n_agree} of {len(judged)})"
-        ordered = [f for f in judged if f["verdict"] == "disagrees"] + [
-            f for f in judged if f["verdict"] == "agrees"
-        ]
+        ordered = sorted(judged, key=lambda f: f["verdict"] != "disagrees")  # stable: disagreeing first
         quoted: list[str] = []
         for f in ordered:
             if quoted and sum(len(q) + 2 for q in quoted) + len(f["text"]) > SUMMARY_CHARS:
