@@ -181,21 +181,28 @@ def wheels_table(quick: bool) -> ItemOutput:
     )
 
 
-def _force_slip_findings(t: Any, out: ItemOutput, wheel: str) -> None:
+def _point_near_slip(
+    t: Any, material: str, model: str, slip: float = 0.3
+) -> tuple[float, float, float] | None:
+    """(slip, sinkage [m], drawbar pull [N]) of the solved point of ``model`` on ``material`` at the
+    sweep's lightest load whose slip is nearest ``slip``; None when there is none."""
     c = t.columns
-    load = float(np.min(c["load_N"]))
+    m = (c["material"] == material) & (c["model"] == model) & c["solved"].astype(bool)
+    m &= c["load_N"] == np.min(c["load_N"])
+    if not np.any(m):
+        return None
+    k = np.nonzero(m)[0][int(np.argmin(np.abs(c["slip"][m] - slip)))]
+    return float(c["slip"][k]), float(c["sinkage_m"][k]), float(c["drawbar_pull_N"][k])
+
+
+def _force_slip_findings(t: Any, out: ItemOutput, wheel: str) -> None:
+    load = float(np.min(t.columns["load_N"]))
     for name in _MEDIA:
         vals = {}
         for model in ("rft", "wong-reece"):
-            m = (
-                (c["material"] == name)
-                & (c["model"] == model)
-                & (c["load_N"] == load)
-                & c["solved"].astype(bool)
-            )
-            if np.any(m):
-                k = np.nonzero(m)[0][int(np.argmin(np.abs(c["slip"][m] - 0.3)))]
-                vals[model] = (float(c["slip"][k]), float(c["sinkage_m"][k]), float(c["drawbar_pull_N"][k]))
+            point = _point_near_slip(t, name, model)
+            if point is not None:
+                vals[model] = point
         if len(vals) < 2:
             out.findings.append(
                 Finding(
@@ -295,20 +302,13 @@ def wheels_bc_force_slip(quick: bool) -> ItemOutput:
 
 def _lug_findings(t_b: Any, t_c: Any, out: ItemOutput) -> None:
     """What B's lugs add to C's drawbar pull in RFT, at the lighter load and slip 0.3."""
+    load = float(np.min(t_b.columns["load_N"]))
     for name in _MEDIA:
-        pulls = []
-        for t in (t_b, t_c):
-            c = t.columns
-            m = (c["material"] == name) & (c["model"] == "rft") & c["solved"].astype(bool)
-            m &= c["load_N"] == np.min(c["load_N"])
-            if not np.any(m):
-                break
-            k = np.nonzero(m)[0][int(np.argmin(np.abs(c["slip"][m] - 0.3)))]
-            pulls.append((float(c["slip"][k]), float(c["load_N"][k]), float(c["drawbar_pull_N"][k])))
-        if len(pulls) < 2:
+        b, c = _point_near_slip(t_b, name, "rft"), _point_near_slip(t_c, name, "rft")
+        if b is None or c is None:
             out.findings.append(Finding(f"lugs, {name}: B or C not solved by RFT", "disagrees"))
             continue
-        (s, load, dp_b), (_, _, dp_c) = pulls
+        (s, _, dp_b), (_, _, dp_c) = b, c
         out.metrics[f"lug_pull_gain_{name}_N"] = dp_b - dp_c
         out.findings.append(
             Finding(

@@ -21,7 +21,7 @@ each number comes from:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 __all__ = ["WHEELS", "WheelDefinition", "wheel_body"]
@@ -40,38 +40,37 @@ class WheelDefinition:
     source: str
 
 
-WHEELS: tuple[WheelDefinition, ...] = (
-    WheelDefinition(
-        "A",
-        "rigid smooth",
-        0.26,
-        0.16,
-        0,
-        (80.0, 130.0, 150.0, 190.0),
-        "diameter: Agarwal et al. 2019 wheel table (first number, as rendered); width and loads: public "
-        "reproductions of that paper (secondary)",
-    ),
-    WheelDefinition(
-        "B",
-        "rigid grousered (effective lugs)",
-        0.212,
-        0.05,
-        15,
-        (42.0, 84.0),
-        "outer diameter and lug count: Agarwal et al. 2021 (Sci. Adv. 7, eabe0631); lug size, width: "
-        "terradyn assumptions; 84 N = mass ratio 6 on poppy seeds (rho_c = 638 kg/m^3), 42 N half of it",
-    ),
-    WheelDefinition(
-        "C",
-        "rigid smooth (stand-in: wheel B without lugs)",
-        0.212,
-        0.05,
-        0,
-        (42.0, 84.0),
-        "not public: terradyn's stand-in is B's rim without lugs; outer diameter as B (Agarwal et al. "
-        "2021), width and loads as B (terradyn assumptions)",
-    ),
+_A = WheelDefinition(
+    "A",
+    "rigid smooth",
+    0.26,
+    0.16,
+    0,
+    (80.0, 130.0, 150.0, 190.0),
+    "diameter: Agarwal et al. 2019 wheel table (first number, as rendered); width and loads: public "
+    "reproductions of that paper (secondary)",
 )
+_B = WheelDefinition(
+    "B",
+    "rigid grousered (effective lugs)",
+    0.212,
+    0.05,
+    15,
+    (42.0, 84.0),
+    "outer diameter and lug count: Agarwal et al. 2021 (Sci. Adv. 7, eabe0631); lug size, width: "
+    "terradyn assumptions; 84 N = mass ratio 6 on poppy seeds (rho_c = 638 kg/m^3), 42 N half of it",
+)
+#: C is B without its lugs: every other field is B's
+_C = replace(
+    _B,
+    name="C",
+    kind="rigid smooth (stand-in: wheel B without lugs)",
+    grousers=0,
+    source="not public: terradyn's stand-in is B's rim without lugs; outer diameter as B (Agarwal et al. "
+    "2021), width and loads as B (terradyn assumptions)",
+)
+
+WHEELS: tuple[WheelDefinition, ...] = (_A, _B, _C)
 
 
 def wheel_body(name: str) -> Any:
