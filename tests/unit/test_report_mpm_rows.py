@@ -36,6 +36,36 @@ def test_flapped_speed_is_averaged_over_whole_flap_periods():
     assert _flap_window(1.0, 4) == pytest.approx(0.5)  # not even one: the last half
 
 
+def test_the_alpha_map_names_its_edgewise_cases_and_the_shape_without_them():
+    from terradyn.geometry import Plate
+    from terradyn.mpm.bodies import body_segments, body_segments_world
+    from terradyn.mpm.report_rows_ch48 import _edgewise_findings
+    from terradyn.studies.mpm_compare import scale_and_shape
+
+    # angle = direction is motion along the plate: the MPM plate's long axis lies along (cos g, -sin g)
+    g = math.radians(30.0)
+    plate = body_segments(Plate(0.04, 0.02, thickness=0.005), 0.005)
+    pts = body_segments_world(plate, np.array([0.0, 0.0, g]))[:, 0, :]
+    w, v = np.linalg.eigh(np.cov((pts - pts.mean(axis=0)).T))
+    assert abs(v[:, -1] @ np.array([math.sin(g), math.cos(g)])) < 1e-9  # no component across the motion
+    assert w[-1] > 10 * w[0]
+
+    def row(a, g, mx, mz, fx, fz):
+        return {"angle_deg": a, "direction_deg": g, "alpha_x_mpm_N_per_m3": mx, "alpha_z_mpm_N_per_m3": mz,
+                "alpha_x_rft_N_per_m3": fx, "alpha_z_rft_N_per_m3": fz}  # fmt: skip
+
+    rows = [row(0, 90, 0.0, 5e5, 0.0, 1e6), row(30, 90, -1e5, 3e5, -2e5, 6e5)]
+    rows.append(row(30, 30, 0.0, 1e4, 1e5, 8e5))
+    (f,) = _edgewise_findings(rows, 0.5)
+    assert f.verdict == "info"
+    assert "30 deg: alpha_z MPM 0.010, RFT x 0.50 0.400 N/cm^3" in f.text
+    # the two other cases are exactly half the law: scale 0.5, no shape difference left
+    assert "without them (2 cases) the scale is 0.500 and the rms shape difference 0.0%" in f.text
+    assert scale_and_shape(np.array([5e5, 3e5]), np.array([1e6, 6e5]))[1] == pytest.approx(0.0)
+    assert _edgewise_findings(rows[:2], 0.5) == []  # no edgewise case, no finding
+    assert _edgewise_findings([row(90, 90, 0.0, 1.0, 0.0, 1.0), *rows[:2]], 0.5)  # vertical plate moving down
+
+
 @pytest.fixture(scope="module")
 def wedge_report(tmp_path_factory):
     folder = tmp_path_factory.mktemp("mpm_report")
