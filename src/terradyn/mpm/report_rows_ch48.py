@@ -65,7 +65,6 @@ def alpha_map(quick: bool) -> ItemOutput:
     from .. import materials
     from ..geometry import Plate
     from ..rft.li2013 import li2013_alpha_material
-    from ..studies.mpm_compare import scale_and_shape
 
     s = _ALPHA_QUICK if quick else _ALPHA_FULL
     grid = _ALPHA_GRID_QUICK if quick else _ALPHA_GRID_FULL
@@ -88,9 +87,7 @@ def alpha_map(quick: bool) -> ItemOutput:
                 "alpha_z_rft_N_per_m3": float(law[1]),
             }
         )
-    m = np.array([[r["alpha_x_mpm_N_per_m3"], r["alpha_z_mpm_N_per_m3"]] for r in rows]).ravel()
-    f = np.array([[r["alpha_x_rft_N_per_m3"], r["alpha_z_rft_N_per_m3"]] for r in rows]).ravel()
-    scale, shape = scale_and_shape(m, f)
+    scale, shape = _map_scale_and_shape(rows)
     ratios = [r["alpha_z_mpm_N_per_m3"] / r["alpha_z_rft_N_per_m3"] for r in rows]
 
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.4), layout="constrained")
@@ -147,6 +144,15 @@ def alpha_map(quick: bool) -> ItemOutput:
     return out
 
 
+def _map_scale_and_shape(rows: list[dict]) -> tuple[float, float]:
+    """:func:`terradyn.studies.mpm_compare.scale_and_shape` of the MPM map rows against the law."""
+    from ..studies.mpm_compare import scale_and_shape
+
+    m = np.array([[r["alpha_x_mpm_N_per_m3"], r["alpha_z_mpm_N_per_m3"]] for r in rows]).ravel()
+    f = np.array([[r["alpha_x_rft_N_per_m3"], r["alpha_z_rft_N_per_m3"]] for r in rows]).ravel()
+    return scale_and_shape(m, f)
+
+
 def _edgewise_findings(rows: list[dict], scale: float) -> list[Finding]:
     """The cases where the plate moves along its own plane, and the shape residual without them.
 
@@ -155,8 +161,6 @@ def _edgewise_findings(rows: list[dict], scale: float) -> list[Finding]:
     plate of the MPM then meets the grains with its edge and two sliding faces; the Li et al. (2013)
     law, a fit to experiments, need not vanish there.
     """
-    from ..studies.mpm_compare import scale_and_shape
-
     edge = [r for r in rows if r["angle_deg"] == r["direction_deg"]]
     rest = [r for r in rows if r not in edge]
     if not edge or len(rest) < 2:
@@ -166,9 +170,7 @@ def _edgewise_findings(rows: list[dict], scale: float) -> list[Finding]:
         f"{scale * r['alpha_z_rft_N_per_m3'] / 1e6:.3f} N/cm^3"
         for r in edge
     )
-    m = np.array([[r["alpha_x_mpm_N_per_m3"], r["alpha_z_mpm_N_per_m3"]] for r in rest]).ravel()
-    f = np.array([[r["alpha_x_rft_N_per_m3"], r["alpha_z_rft_N_per_m3"]] for r in rest]).ravel()
-    s_rest, shape_rest = scale_and_shape(m, f)
+    s_rest, shape_rest = _map_scale_and_shape(rest)
     return [
         Finding(
             f"edgewise cases (the plate moving along its own plane, direction = plate angle): {cases}; "
