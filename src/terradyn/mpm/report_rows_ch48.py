@@ -145,12 +145,10 @@ def alpha_map(quick: bool) -> ItemOutput:
 
 
 def _map_scale_and_shape(rows: list[dict]) -> tuple[float, float]:
-    """:func:`terradyn.studies.mpm_compare.scale_and_shape` of the MPM map rows against the law."""
-    from ..studies.mpm_compare import scale_and_shape
+    """:func:`terradyn.studies.mpm_compare.alpha_scale_and_shape` of the MPM map rows against the law."""
+    from ..studies.mpm_compare import alpha_scale_and_shape
 
-    m = np.array([[r["alpha_x_mpm_N_per_m3"], r["alpha_z_mpm_N_per_m3"]] for r in rows]).ravel()
-    f = np.array([[r["alpha_x_rft_N_per_m3"], r["alpha_z_rft_N_per_m3"]] for r in rows]).ravel()
-    return scale_and_shape(m, f)
+    return alpha_scale_and_shape({k: np.array([r[k] for r in rows]) for k in rows[0]}, "mpm", "rft")
 
 
 def _edgewise_findings(rows: list[dict], scale: float) -> list[Finding]:
