@@ -10,10 +10,11 @@ from typing import Any
 import typer
 
 from ..errors import InputError
+from ..models import model_entry, model_names
 from ._common import OutputFormat, atomic_write, emit, fraction_progress, progress
 from .options import FORMAT, OUT_FOLDER_HELP, PHASES, input_file, out_folder
 
-_MODELS = "rft, drft, wong-reece, rft3d, rft-ss (2D slip-sinkage) or rft3d-ss (3D slip-sinkage)"
+_MODELS = ", ".join(f"{n} ({model_entry(n).title})" for n in model_names(use="replay"))
 
 
 def replay(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import typer
 
 from ..errors import InputError
+from ..models import model_names
 from ._common import OutputFormat, atomic_write_text, emit, fraction_progress, save_figure
 from .options import FORMAT, OUT, OUT_FOLDER_HELP, QUICK, input_file, out_file, out_folder
 
@@ -70,7 +71,11 @@ def high_speed(
         "--material",
         help="Medium with a critical density (default: the poppy seeds of the thesis high-speed study).",
     ),
-    model: str = typer.Option("rft,drft", "--model", help="Terrain models, comma separated (rft, drft)."),
+    model: str = typer.Option(
+        "rft,drft",
+        "--model",
+        help="Terrain models, comma separated: " + ", ".join(model_names(use="dynamics")) + ".",
+    ),
     omega: str | None = typer.Option(None, "--omega", help="Spin rates [rad/s]: list or start:stop:count."),
     gravity: float = typer.Option(9.81, "--gravity", help="Gravity [m/s^2]."),
     initial_velocity: float = typer.Option(0.0, "--initial-velocity", help="Initial speed [m/s]."),

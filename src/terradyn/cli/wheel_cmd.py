@@ -13,8 +13,8 @@ import typer
 from .. import materials
 from ..errors import InputError, check_finite
 from ..geometry import Body
-from ..locomotion.models import MODEL_NAMES
 from ..materials import Material
+from ..models import model_entry, model_names
 from ._bodies import BodyKind, _declared, build_body
 from ._common import (
     OutputFormat,
@@ -69,6 +69,11 @@ _SHAPE_TO_BODY = {
 }
 
 
+def _model_help(use: str) -> str:
+    """``--model`` help from the model table (:mod:`terradyn.models`)."""
+    return "Terrain model: " + ", ".join(model_names(use=use)) + "."
+
+
 class WongReeceOptions:
     c1 = typer.Option(0.43, "--c1", help="Wong-Reece theta_m coefficient c1 [-].")
     c2 = typer.Option(0.32, "--c2", help="Wong-Reece theta_m coefficient c2 [-].")
@@ -82,8 +87,7 @@ def model_factory(
     from ..locomotion.models import ModelSpec
 
     exit_angle = math.radians(check_finite("--exit-angle", exit_angle_deg))
-    if name.strip().lower() not in (*MODEL_NAMES, "wongreece", "wr"):
-        raise InputError("--model", name, f"one of {list(MODEL_NAMES)}")
+    model_entry(name, allowed=model_names(use="self-propelled"), field="--model")
     return ModelSpec(name, element_size=element_size, c1=c1, c2=c2, exit_angle=exit_angle)
 
 
@@ -192,7 +196,7 @@ def steady(
     rim_speed: float | None = KinematicsOptions.rim_speed,
     carriage_speed: float | None = KinematicsOptions.carriage_speed,
     omega: float = OMEGA,
-    model: str = typer.Option("rft", "--model", help="Terrain model: rft, drft, wong-reece or rft3d."),
+    model: str = typer.Option("rft", "--model", help=_model_help("steady")),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
     width: float = WHEEL_WIDTH,
     sizes: dict[str, Any] = {},  # the wheel size flags (WHEEL_SIZE_FLAGS)  # noqa: B006
@@ -219,7 +223,7 @@ def steady(
     flags = _shape_flags(shape, sizes)
     _load_or_sinkage(load, sinkage)
     kin = _kinematics(slip, slip_definition, rim_speed, carriage_speed)
-    if model.strip().lower() == "rft3d":
+    if model_entry(model, use="steady", field="--model").dimension == 3:
         if plot_path is not None:
             raise InputError("--plot", plot, "a plane model (--model rft)")
         angle = _slip_angle_deg(slip_angle, kin)
@@ -346,7 +350,7 @@ def self_propelled(
     load: float = LOAD,
     drawbar_load: float = DRAWBAR_LOAD,
     omega: float = OMEGA,
-    model: str = typer.Option("rft", "--model", help="Terrain model: rft, drft, wong-reece or rft3d."),
+    model: str = typer.Option("rft", "--model", help=_model_help("self-propelled")),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
     width: float = WHEEL_WIDTH,
     sizes: dict[str, Any] = {},  # the wheel size flags (WHEEL_SIZE_FLAGS)  # noqa: B006
@@ -382,7 +386,9 @@ def sweep(
     load: str = typer.Option("80,130,150,190", "--load", help="Loads [N]: a comma list or start:stop:count."),
     slip: str = typer.Option("-0.7:0.7:15", "--slip", help="Slips [-]: a comma list or start:stop:count."),
     model: str = typer.Option(
-        "rft,wong-reece", "--model", help="Models, comma separated (rft, drft, wong-reece, rft3d, ...)."
+        "rft,wong-reece",
+        "--model",
+        help="Models, comma separated: " + ", ".join(model_names(use="sweep")) + ".",
     ),
     omega: float = OMEGA,
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
@@ -422,13 +428,14 @@ def sweep(
         raise InputError("--workers", workers, "an integer in [1, 256]")
     flags = _shape_flags(shape, sizes)
     names = [m.strip() for m in model.split(",") if m.strip()]
-    spatial = [n for n in names if n.lower() == "rft3d"]
-    plane = [n for n in names if n.lower() != "rft3d"]
+    dimension = {n: model_entry(n, use="sweep", field="--model").dimension for n in names}
+    spatial = [n for n in names if dimension[n] == 3]
+    plane = [n for n in names if dimension[n] == 2]
     factories = {
         n: model_factory(n, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size) for n in plane
     }
     if not names:
-        raise InputError("--model", model, f"one or more of {[*MODEL_NAMES, 'rft3d']}")
+        raise InputError("--model", model, f"one or more of {', '.join(model_names(use='sweep'))}")
     kin = _kinematics(0.0, slip_definition, None, None)
     loads = parse_float_list("--load", load)
     slips = parse_float_list("--slip", slip)
@@ -573,7 +580,7 @@ def simulate(
     inertia: float | None = typer.Option(None, "--inertia", help="Moment of inertia [kg m^2]."),
     drawbar_load: float = DRAWBAR_LOAD,
     gravity: float = GRAVITY,
-    model: str = typer.Option("rft", "--model", help="Terrain model: rft or drft."),
+    model: str = typer.Option("rft", "--model", help=_model_help("dynamics")),
     shape: WheelShape = typer.Option(WheelShape.circular, "--shape", help="Wheel shape."),
     width: float = WHEEL_WIDTH,
     sizes: dict[str, Any] = {},  # the wheel size flags (WHEEL_SIZE_FLAGS)  # noqa: B006
@@ -589,8 +596,7 @@ def simulate(
     out_path = out_file("--out", out, (".csv", ".json", ".nc"))
     plot_path = plot_file("--plot", plot)
     animate_path = animation_file("--animate", animate)
-    if model not in ("rft", "drft"):
-        raise InputError("--model", model, "'rft' or 'drft'")
+    model = model_entry(model, use="dynamics", field="--model").name
     if out_path is not None and out_path.suffix == ".nc":
         _require("xarray", "--out", out, "the fields extra for .nc output (pip install 'terradyn[fields]')")
     body = wheel_body(shape, width, _shape_flags(shape, sizes))

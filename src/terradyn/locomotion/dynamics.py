@@ -59,6 +59,7 @@ from ..errors import InputError, SolverError, check_finite, check_positive
 from ..geometry import Body, SurfaceElements
 from ..kinematics import Pose2D
 from ..materials import Material
+from ..models import model_entry
 from ..rft import RFTModel
 from ..rft.drft import DRFTModel
 from . import _dynamics_kernels as K
@@ -288,12 +289,10 @@ class WheelDynamicsResult:
 def _resolve_model(material: Material, model: str | RFTModel | DRFTModel, gravity: float) -> DRFTModel:
     """The model as DRFT options (RFT = DRFT with no inertial or structural term)."""
     if isinstance(model, str):
-        key = model.strip().lower()
+        key = model_entry(model, use="dynamics").name
         if key == "rft":
             return DRFTModel(material, inertial_coefficient=0.0, structural_correction=False, gravity=gravity)
-        if key == "drft":
-            return DRFTModel(material, gravity=gravity)
-        raise InputError("model", model, "'rft', 'drft', an RFTModel or a DRFTModel")
+        return DRFTModel(material, gravity=gravity)
     if isinstance(model, RFTModel):
         if model.material != material:
             raise InputError("model", model.name, f"a model on the same material ({material.name!r})")
@@ -311,7 +310,10 @@ def _resolve_model(material: Material, model: str | RFTModel | DRFTModel, gravit
         if model.structural_correction and not math.isclose(model.gravity, gravity):
             raise InputError("model.gravity", model.gravity, f"the simulation gravity {gravity:g} m/s^2")
         return model
-    raise InputError("model", type(model).__name__, "'rft', 'drft', an RFTModel or a DRFTModel")
+    raise InputError(
+        "model", type(model).__name__, "'rft', 'drft', an RFTModel or a DRFTModel",
+        "any other terrain model (a user's included) runs through terradyn.locomotion.simulate_coupled",
+    )  # fmt: skip
 
 
 def _geometry(

@@ -10,6 +10,7 @@ balances W, and the minimum and maximum over the period are reported too.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from typing import Any
@@ -18,8 +19,9 @@ import numpy as np
 
 from ..errors import InputError, SolverError, check_positive, check_range
 from ..geometry import Body, WheelCircular
-from ..kinematics import Pose2D, SlipDefinition, Twist2D, as_slip_definition, speeds_from_slip
+from ..kinematics import Pose2D, SlipDefinition, Twist2D, Wrench2D, as_slip_definition, speeds_from_slip
 from ..materials import Material
+from ..models import as_terrain_model
 from ..rft import RFTModel
 from ..terrain import TerrainModel
 
@@ -105,12 +107,21 @@ def wheel_rotation_period(body: Body) -> float | None:
     return 2.0 * math.pi
 
 
-def _as_model(model: TerrainModel | Material) -> TerrainModel:
+def _as_model(model: Any) -> TerrainModel:
+    """A Material means RFT on it; a terrain model object (a user's included) is used as it is; a
+    plain function ``wrench(body, pose, twist) -> Wrench2D`` is wrapped
+    (:func:`terradyn.models.as_terrain_model`)."""
     if isinstance(model, Material):
         return RFTModel(model)
-    if not isinstance(model, TerrainModel):
-        raise InputError("model", type(model).__name__, "a terrain model or a Material (for RFT)")
-    return model
+    if isinstance(model, TerrainModel):
+        return model
+    if callable(model):
+        return as_terrain_model(model)
+    raise InputError(
+        "model",
+        type(model).__name__,
+        "a terrain model, a function wrench(body, pose, twist) or a Material (RFT)",
+    )
 
 
 class _ForceFunction:
@@ -246,7 +257,7 @@ def _raise_status(status: int, what: str, load: float, carried: float) -> None:
 
 def wheel_steady(
     body: Body,
-    model: TerrainModel | Material,
+    model: TerrainModel | Material | Callable[..., Wrench2D],
     load: float,
     slip: float,
     *,
@@ -260,8 +271,10 @@ def wheel_steady(
     ----------
     body : Body
         The wheel; origin at the axle. Nominal radius = ``outer_radius`` (or the bounding radius).
-    model : TerrainModel or Material
-        Terrain model (a Material means quasi-static RFT on it).
+    model : TerrainModel, function or Material
+        Terrain model: a terradyn model (:func:`terradyn.models.build_model`), a user's object with
+        ``name`` and ``wrench(body, pose, twist, *, about=None)``, a plain function
+        ``wrench(body, pose, twist) -> Wrench2D``, or a Material (quasi-static RFT on it).
     load : float
         Vertical load W on the axle [N] (> 0).
     slip : float

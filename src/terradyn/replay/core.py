@@ -192,6 +192,10 @@ def split_runs(table: RunsTable, calibrate_on: float | str, *, seed: int = 0) ->
 
 
 def _fit_names(model: ReplayModel) -> tuple[str, ...]:
+    if model.is_user_model:
+        raise InputError(
+            "model", model.name, "a terradyn RFT-family model for calibration (a user's model has no scale)"
+        )
     if model.name == "wong-reece":
         raise InputError(
             "model", model.name, "an RFT-family model for calibration (rft, drft, rft3d, rft-ss, rft3d-ss)"

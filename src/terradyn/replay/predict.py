@@ -22,12 +22,13 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError, TerradynError, check_range
+from ..models import model_entry, model_names
 from .table import QUANTITIES, RunRow, WheelSpec
 
 __all__ = ["MODELS_2D", "MODELS_3D", "REPLAY_MODELS", "Prediction", "ReplayModel", "predict_run"]
 
-MODELS_2D = ("rft", "drft", "wong-reece", "rft-ss")
-MODELS_3D = ("rft3d", "rft3d-ss")
+MODELS_2D = model_names(use="replay", dimension=2)
+MODELS_3D = model_names(use="replay", dimension=3)
 REPLAY_MODELS = (*MODELS_2D, *MODELS_3D)
 _SLIP_SINKAGE = ("rft-ss", "rft3d-ss")
 # More rotational symmetry than this counts as axisymmetric (one phase): a meshed smooth rim.
@@ -47,6 +48,10 @@ class ReplayModel:
     phase_count : wheel angles averaged over one period of a non-circular wheel
     cull : drop the facets of a mesh wheel the medium cannot reach (hub, inner rim), as
         ``wheel steady --mesh`` does (:func:`terradyn.locomotion.wheel3d.wheel_contact_mesh`)
+    terrain : a plane terrain model of the user's, replayed instead of a named one: an object with
+        ``name`` and ``wrench(body, pose, twist, *, about=None)`` (used for every medium), or a function
+        ``material -> terrain model`` (called with each run's medium); ``name`` is then free (it labels
+        the results) and ``scale`` must be 1. Calibration fits nothing of a user's model.
     """
 
     name: str
@@ -56,12 +61,13 @@ class ReplayModel:
     repose_angle: float | None = None
     phase_count: int = 16
     cull: bool = True
+    terrain: Any = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
-        key = self.name.strip().lower()
-        key = {"wr": "wong-reece", "wongreece": "wong-reece"}.get(key, key)
-        if key not in REPLAY_MODELS:
-            raise InputError("model", self.name, f"one of {list(REPLAY_MODELS)}")
+        if self.terrain is not None:
+            self._check_user_model()
+            return
+        key = model_entry(self.name, use="replay").name
         object.__setattr__(self, "name", key)
         check_range("scale", self.scale, 1e-6, 1e6)
         if key == "wong-reece" and self.scale != 1.0:
@@ -79,9 +85,30 @@ class ReplayModel:
         if key in _SLIP_SINKAGE:
             self.slip_sinkage()  # checks the slip-sinkage parameters now, not per run
 
+    def _check_user_model(self) -> None:
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise InputError("name", self.name, "a label for the user's model")
+        if not callable(self.terrain) and not hasattr(self.terrain, "wrench"):
+            raise InputError(
+                "terrain",
+                type(self.terrain).__name__,
+                "a terrain model (wrench method) or a function material -> model",
+            )
+        if self.scale != 1.0:
+            raise InputError("scale", self.scale, "1 for a user's model (terradyn cannot scale it)")
+        for attr in ("excavation", "bulldozing", "repose_angle"):
+            if getattr(self, attr) is not None:
+                raise InputError(
+                    attr, getattr(self, attr), "unset for a user's model (a slip-sinkage parameter)"
+                )
+
     @property
     def is_3d(self) -> bool:
-        return self.name in MODELS_3D
+        return self.terrain is None and self.name in MODELS_3D
+
+    @property
+    def is_user_model(self) -> bool:
+        return self.terrain is not None
 
     def slip_sinkage(self) -> Any:
         """The :class:`~terradyn.rft.slip_sinkage.SlipSinkageParameters` of this model."""
@@ -202,6 +229,17 @@ def predict_task(task: tuple[RunRow, ReplayModel]) -> Prediction:
 
 # ----------------------------------------------------------------------------------------------- 2D
 def _model_2d(model: ReplayModel, material: Any) -> Any:
+    if model.terrain is not None:
+        from ..terrain import TerrainModel
+
+        if isinstance(model.terrain, TerrainModel):
+            return model.terrain
+        built = model.terrain(material)
+        if not isinstance(built, TerrainModel):
+            raise InputError(
+                "terrain(material)", type(built).__name__, "a terrain model (name and wrench method)"
+            )
+        return built
     if model.name == "wong-reece":
         from ..terramechanics import WongReeceModel
 

@@ -8,6 +8,7 @@ import json
 from pathlib import Path
 from typing import Any
 
+from ..models import model_title
 from .registry import ThesisItem, chapter_title, rows_of
 
 __all__ = ["summary_rows", "write_report"]
@@ -19,16 +20,6 @@ text-align:left;vertical-align:top}th{background:#f3f3f3}img{max-width:100%;bord
 .agrees{color:#176e2a}.disagrees{color:#b3261e}.info{color:#555}.pending{color:#8a6d00}
 code,pre{background:#f6f6f6;font-size:.85em}pre{padding:.5em;overflow-x:auto}.cap{color:#444}"""
 
-_MODEL_NAMES = {
-    "rft": "RFT",
-    "drft": "DRFT",
-    "wong-reece": "Wong-Reece",
-    "bekker": "Bekker",
-    "theory": "closed form",
-    "mpm": "MPM",
-    "dem": "DEM",
-}
-
 
 def _model_rows(it: ThesisItem, results: dict[tuple[str, str], dict[str, Any]]) -> list[dict[str, Any]]:
     """One entry per model shown for the item: status and the result holding its figures."""
@@ -38,7 +29,7 @@ def _model_rows(it: ThesisItem, results: dict[tuple[str, str], dict[str, Any]]) 
             out.append({"model": model, "status": "pending", "result": None})
         elif spec.startswith("="):
             first = results.get((it.key, spec[1:]))
-            status = "in the " + _MODEL_NAMES.get(spec[1:], spec[1:]) + " row" if first else "not run"
+            status = "in the " + model_title(spec[1:]) + " row" if first else "not run"
             out.append({"model": model, "status": status, "result": None})
         else:
             r = results.get((it.key, model))
@@ -59,7 +50,7 @@ def summary_rows(
     for it in items:
         models, findings = [], []
         for m in _model_rows(it, results):
-            models.append(f"{_MODEL_NAMES.get(m['model'], m['model'])} ({m['status']})")
+            models.append(f"{model_title(m['model'])} ({m['status']})")
             if m["result"] and m["result"].get("status") == "ran":
                 findings += m["result"]["findings"]
         judged = [f for f in findings if f["verdict"] != "info"]
@@ -185,7 +176,7 @@ def write_report(
             h.append(f"<p class='cap'>reproduced by <code>{html.escape(it.study)}</code></p>")
             md.append(f"### {it.label}: {it.caption}\n\nreproduced by `{it.study}`\n")
             for m in _model_rows(it, results):
-                name = _MODEL_NAMES.get(m["model"], m["model"])
+                name = model_title(m["model"])
                 r = m["result"]
                 if r is None or r.get("status") != "ran":
                     why = r["error"] if r and r.get("error") else m["status"]

@@ -303,9 +303,12 @@ def high_speed_sweep(
         raise InputError("wheel", type(wheel).__name__, "a HighSpeedWheel")
     g = check_positive("gravity", gravity)
     mat = _material(material, g, medium_follows_gravity)
+    from ..models import model_names
+
+    allowed = model_names(use="dynamics")
     names = [str(m).strip().lower() for m in models]
-    if not names or any(m not in ("rft", "drft") for m in names):
-        raise InputError("models", models, "one or more of 'rft', 'drft'")
+    if not names or any(m not in allowed for m in names):
+        raise InputError("models", models, f"one or more of {', '.join(allowed)}")
     ell = wheel.outer_diameter
     w = _omegas(omegas, reduced, ell, g)
     check_finite("initial_velocity", initial_velocity)
