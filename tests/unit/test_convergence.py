@@ -7,7 +7,8 @@ import math
 import pytest
 
 from terradyn.errors import InputError
-from terradyn.studies.convergence import converge, least_squares_limit, richardson
+from terradyn.numerics import least_squares_limit, richardson
+from terradyn.studies.convergence import converge
 
 
 @pytest.mark.parametrize("order", [0.7, 1.0, 2.0])

@@ -151,7 +151,7 @@ def test_the_fe_rows_follow_their_own_rule_from_the_readings_they_quote():
     slow readings at 10 / 20 / 40 elements)."""
     import re
 
-    from terradyn.studies.convergence import richardson
+    from terradyn.numerics import richardson
 
     rows = [r for r in refs._TABLE if r["kind"] == "computed, finite elements"]
     assert rows and {r["rule"] for r in rows} <= set(refs._FE_RULES)

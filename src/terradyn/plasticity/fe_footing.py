@@ -398,7 +398,7 @@ class FEConvergence:
 
     runs: tuple[FEFooting, ...]
     elements_per_half_width: tuple[int, ...]
-    estimate: Any  # terradyn.studies.convergence.RichardsonEstimate
+    estimate: Any  # terradyn.numerics.RichardsonEstimate
     wall_s: tuple[float, ...]
 
     def record(self) -> dict[str, Any]:
@@ -426,12 +426,12 @@ def fe_n_gamma_convergence(
     **kwargs: Any,
 ) -> FEConvergence:
     """:func:`fe_strip_footing` at each of ``elements`` (elements per footing half-width, three or more)
-    and the Richardson estimate (:func:`terradyn.studies.convergence.richardson`) of ``N_gamma`` from
+    and the Richardson estimate (:func:`terradyn.numerics.richardson`) of ``N_gamma`` from
     the three finest. ``progress(done, total)`` after each mesh, with work counted as elements x
     steps (the cost of a mesh grows about as the cube of its refinement)."""
     import time
 
-    from ..studies.convergence import richardson
+    from ..numerics import richardson
 
     meshes = tuple(elements)
     if (len(meshes) < 3 or len(set(meshes)) != len(meshes)
