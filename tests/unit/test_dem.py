@@ -139,7 +139,7 @@ def test_restart_repeats_the_uninterrupted_run_bit_for_bit(medium, bed_file, pla
 
 
 def test_snapshots_and_frames_leave_the_run_unchanged(medium, bed_file, plate_run, tmp_path):
-    from terradyn.mpm.checkpoint import read_snapshot
+    from terradyn.runrecords import read_snapshot
 
     pytest.importorskip("xarray")
     folder = tmp_path / "snaps"
@@ -295,7 +295,7 @@ def test_wheel_carries_its_load_and_sinks(medium, tmp_path):
     s = res.summary
     # snapshots every other row, frames every other row, the wheel's pose in each: axle at its height
     assert len(res.snapshots) == 5 and len(res.frames) == 5
-    from terradyn.mpm.checkpoint import read_snapshot
+    from terradyn.runrecords import read_snapshot
 
     last = read_snapshot(res.snapshots[-1])
     assert last.attrs["body_theta_rad"] == pytest.approx(3.0 * last.attrs["time_s"])

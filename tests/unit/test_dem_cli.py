@@ -31,7 +31,7 @@ def test_dem_intrude_writes_snapshots_fields_and_animation(run_cli, soft_medium,
     pytest.importorskip("xarray")
     from PIL import Image
 
-    from terradyn.mpm.checkpoint import read_snapshot
+    from terradyn.runrecords import read_snapshot
 
     snaps, png, gif = tmp_path / "snaps", tmp_path / "f.png", tmp_path / "a.gif"
     code, out, err = run_cli("dem", *PLATE, "--material", soft_medium, "--packing", "loose",

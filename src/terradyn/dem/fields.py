@@ -171,7 +171,7 @@ class FieldRecorder:
                  pose: tuple[float, float, float]) -> Path | None:  # fmt: skip
         if self.snapshot_dir is None or not is_root(lmp):
             return None
-        from ..mpm.checkpoint import write_snapshot
+        from ..runrecords import write_snapshot
 
         attrs = {
             "time_s": time_s,

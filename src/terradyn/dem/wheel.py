@@ -214,7 +214,7 @@ def run_wheel(
 def _inputs(body: Body | MeshIntruder, material: Material, bed: Bed | None, **values: Any) -> dict[str, Any]:
     """The inputs that identify a wheel run (a resume must repeat them), as JSON loads them back.
     The bed's preparation counts only when this call prepares it."""
-    from ..mpm.checkpoint import plain
+    from ..runrecords import plain
 
     bed_made = {k: values.pop(k) for k in ("kind", "packing", "grain_diameter", "seed", "gravity")}
     dem = {k: v for k, v in plain(material.require_dem()).items() if k != "notes"}  # numbers only
@@ -226,7 +226,7 @@ def _inputs(body: Body | MeshIntruder, material: Material, bed: Bed | None, **va
 
 
 def _check_inputs(ckpt: Path, saved: dict[str, Any], current: dict[str, Any]) -> None:
-    from ..mpm.checkpoint import input_differences
+    from ..runrecords import input_differences
 
     current = dict(current)
     if saved.get("bed") == "given":  # a bed given to the first call: nothing to compare
