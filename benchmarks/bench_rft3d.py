@@ -2,8 +2,8 @@
 
 A random cloud of F = 1e3 .. 1e6 facets (random unit normals, every facet below the surface, the body
 translating and spinning) is summed to a force and moment by
-:func:`terradyn.rft._kernels3d.rft3d_wrench_kernel` (one thread),
-:func:`~terradyn.rft._kernels3d.rft3d_wrench_parallel_kernel` (numba threads set to 1, then to all) and
+:func:`terradyn.rft.kernels.rft3d_wrench_kernel` (one thread),
+:func:`~terradyn.rft.kernels.rft3d_wrench_parallel_kernel` (numba threads set to 1, then to all) and
 the NumPy reference :func:`terradyn.rft.rft3d.rft3d_facet_forces`. The leading-edge rule is on, so
 about half the facets carry load; every facet is counted as one evaluation. One-thread figures are
 timed in process CPU time (robust on a shared machine), the all-threads figure in wall time.
@@ -19,7 +19,7 @@ import numba
 import numpy as np
 
 from terradyn.geometry3d import Pose3D, TriangleMesh, Twist3D
-from terradyn.rft._kernels3d import rft3d_wrench_kernel, rft3d_wrench_parallel_kernel
+from terradyn.rft.kernels import rft3d_wrench_kernel, rft3d_wrench_parallel_kernel
 from terradyn.rft.rft3d import UPWARD_TOLERANCE, agarwal2023_coefficients, rft3d_facet_forces
 
 SIZES = (1_000, 10_000, 100_000, 1_000_000)

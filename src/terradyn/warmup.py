@@ -7,9 +7,10 @@ cache that is the compile cost, on a warm one the cost of loading. ``terradyn wa
 
 By default the work runs in a child process (``isolated=True``). Code that numba compiles in the
 running process can be slower than the same code loaded from the cache: a kernel that calls another
-compiled function (the 3D-RFT facet loop ``_wrench_range``) links its own, better optimised copy of
-it, but in the compiling process the call resolves to the callee's stand-alone compilation, which is
-not vectorised (about 3x slower; a process that loads both from the cache gets the vectorised copy).
+compiled function (the 3D-RFT facet loop ``rft3d_wrench_range_kernel``) links its own, better
+optimised copy of it, but in the compiling process the call resolves to the callee's stand-alone
+compilation, which is not vectorised (about 3x slower; a process that loads both from the cache gets
+the vectorised copy).
 Compiling in a child fills the cache and leaves the calling process to load the fast code on first
 use. Run as ``python -m terradyn.warmup`` it prints one JSON line per kernel.
 """

@@ -326,7 +326,7 @@ def intrude(
                             bed_spec=spec, record_spacing=spacing, checkpoint_path=ckpt,
                             checkpoint_interval=checkpoint_interval, resume=resume, progress=bar,
                             **outs.library(snap_every))  # fmt: skip
-    from ..dem._lammps import mpi_barrier, mpi_rank
+    from ..dem import mpi_barrier, mpi_rank
 
     if mpi_rank() != 0:  # under mpirun every rank has the result; rank 0 writes and prints it
         mpi_barrier()  # wait for rank 0's outputs: a rank that exits ends the job
@@ -389,7 +389,7 @@ def drag(
     with fraction_progress("DEM drag", "m travelled") as bar:
         res = run_drag(shape, mat, depth=depth, distance=distance, speed=speed, angle=theta,
                        packing=packing, grain_diameter=d, seed=seed, progress=bar)  # fmt: skip
-    from ..dem._lammps import mpi_barrier, mpi_rank
+    from ..dem import mpi_barrier, mpi_rank
 
     if mpi_rank() != 0:  # under mpirun rank 0 writes and prints
         mpi_barrier()
@@ -488,7 +488,7 @@ def wheel(
                         packing=packing, grain_diameter=d, seed=seed, record_interval=record_interval,
                         checkpoint_path=ckpt, checkpoint_interval=checkpoint_interval, resume=resume,
                         progress=bar, **outs.library(snap_every))  # fmt: skip
-    from ..dem._lammps import mpi_barrier, mpi_rank
+    from ..dem import mpi_barrier, mpi_rank
 
     if mpi_rank() != 0:
         mpi_barrier()  # wait for rank 0's outputs: a rank that exits ends the job
@@ -663,7 +663,7 @@ def calibrate_from_dem(
             progress=lambda done, total: bar(done, done / total),
         )  # fmt: skip
     fit = fit_rft(test.data, plate_length=length, plate_width=width, full=full)
-    from ..dem._lammps import mpi_rank
+    from ..dem import mpi_rank
 
     if mpi_rank() != 0:
         return

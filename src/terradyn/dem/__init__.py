@@ -7,7 +7,7 @@ at a prescribed velocity and records force and torque. Importing this package do
 the first call that needs it does, and raises :class:`DEMUnavailable` (one line) without the extra.
 """
 
-from ._lammps import DEMUnavailable, load_lammps
+from ._lammps import DEMUnavailable, load_lammps, mpi_barrier, mpi_rank
 from .bed import Bed, BedKind, BedSpec, Packing, load_bed, prepare_bed, save_bed
 from .runs import DEMIntrusionResult, default_bed_spec, run_intrusion
 
@@ -21,6 +21,8 @@ __all__ = [
     "default_bed_spec",
     "load_bed",
     "load_lammps",
+    "mpi_barrier",
+    "mpi_rank",
     "prepare_bed",
     "run_intrusion",
     "save_bed",

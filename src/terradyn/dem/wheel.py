@@ -54,7 +54,7 @@ from .runs import (
 if TYPE_CHECKING:
     from ..geometry3d import TriangleMesh
 
-__all__ = ["DEMWheelResult", "default_wheel_bed", "run_wheel"]
+__all__ = ["DEMWheelResult", "default_wheel_bed", "run_wheel", "wheel_radius"]
 
 WHEEL_HISTORY = ("time_s", "x_m", "z_m", "sinkage_m", "drawbar_pull_N", "vertical_force_N", "drive_torque_Nm")
 
@@ -79,7 +79,8 @@ class DEMWheelResult:
         return pd.DataFrame({k: self.history[k] for k in WHEEL_HISTORY})
 
 
-def _radius(body: Body | MeshIntruder) -> float:
+def wheel_radius(body: Body | MeshIntruder) -> float:
+    """Nominal (outer) radius [m] of a DEM wheel body; an InputError for a body that is not a wheel."""
     r = getattr(body, "outer_radius", None)
     if r is None:
         raise InputError("body", body, "a wheel (WheelCircular, WheelGrousered, WheelFlapped)")
@@ -95,7 +96,7 @@ def default_wheel_bed(body: Body | MeshIntruder | TriangleMesh, *, travel: float
     end: more than the margin needs (about twice the grains of a bed sized to the path for a travel of
     several radii); kept so that measured DEM wheel figures stay comparable."""
     body = as_intruder(body)
-    r = _radius(body)
+    r = wheel_radius(body)
     margin = max(r, 6 * grain_diameter)
     length = 2.0 * (travel + r + margin) + 0.0
     kind = BedKind.coerce(kind)
@@ -153,7 +154,7 @@ def run_wheel(
     body = as_intruder(body)
     if isinstance(body, MeshIntruder) and not resume:
         _mesh_bed(bed.spec.kind if bed is not None else BedKind.coerce(kind))
-    r = _radius(body)
+    r = wheel_radius(body)
     if bed is not None:
         if gravity is not None and not math.isclose(gravity, bed.spec.gravity, rel_tol=1e-12):
             raise InputError("gravity", gravity, f"the prepared bed's {bed.spec.gravity:g} m/s^2",

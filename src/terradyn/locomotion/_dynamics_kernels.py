@@ -14,7 +14,7 @@ equations are solved by Newton's method with a finite-difference Jacobian of the
 across steps while the iteration converges in at most three updates, refreshed otherwise) and a
 backtracking line search; a step whose iteration fails is retried as 2, 4, ... 2**max_halvings
 substeps. The soil force is the DRFT kernel with its time-stepping smoothing (``P_BAND`` > 0: smoothed
-leading-edge switch and structural split, see :func:`terradyn.rft._kernels_drft.drft_wrench_kernel`),
+leading-edge switch and structural split, see :func:`terradyn.rft.kernels.drft_wrench_kernel`),
 so the implicit equations have a root; the body-frame element angles it needs are computed once.
 
 A body without spin at rest is a set-valued (plastic) contact problem: RFT gives no force at zero
@@ -42,7 +42,7 @@ import math
 import numba as nb
 import numpy as np
 
-from ..rft._kernels_drft import body_angles_kernel, drft_wrench_kernel, drft_wrench_smooth_kernel
+from ..rft.kernels import body_angles_kernel, drft_wrench_kernel, drft_wrench_smooth_kernel
 
 __all__ = ["N_COLUMNS", "N_PARAMS", "N_STATS", "integrate_wheel_kernel", "omega_profile"]
 

@@ -1,9 +1,9 @@
 """Numba kernels of the steady wheel solves: the whole root-finding loop of one operating point.
 
 Plain functions of NumPy arrays and floats in SI. The 2D kernel takes the plane-RFT element arrays of
-:mod:`terradyn.rft._kernels` (``mid``, ``nrm`` (N, 2) [m, -], ``lengths`` (N,) [m], ``coeffs`` (9,),
+:mod:`terradyn.rft.kernels` (``mid``, ``nrm`` (N, 2) [m, -], ``lengths`` (N,) [m], ``coeffs`` (9,),
 ``scale`` [N/m^3]); the 3D kernels take the component-major facet arrays of
-:mod:`terradyn.rft._kernels3d` (``centroids``, ``normals`` (3, F), ``areas`` (F,)).
+:mod:`terradyn.rft.kernels` (``centroids``, ``normals`` (3, F), ``areas`` (F,)).
 
 Both solves follow :func:`terradyn.locomotion.steady.wheel_steady` and
 :func:`terradyn.locomotion.steady3d.wheel_steady_3d`: a coarse scan of ``SCAN_POINTS`` axle heights
@@ -24,8 +24,12 @@ import math
 import numba as nb
 import numpy as np
 
-from ..rft._kernels import rft_contact_angles_kernel, rft_wrench_kernel
-from ..rft._kernels3d import _alpha, _wrench_range
+from ..rft.kernels import (
+    rft3d_alpha_kernel,
+    rft3d_wrench_range_kernel,
+    rft_contact_angles_kernel,
+    rft_wrench_kernel,
+)
 
 __all__ = [
     "NOT_CONVERGED",
@@ -317,7 +321,7 @@ def _rft3d_phase_wrench(
     """Wrench of the first ``count`` facets with the axle at (0, 0, height), moments about the axle."""
     pos = np.zeros(3)
     pos[2] = height
-    return _wrench_range(
+    return rft3d_wrench_range_kernel(
         centroids, normals, areas, rot, pos, lin, ang, coeffs, xi, surface, leading, mu_surf, up_tol,
         pos, 0, count,
     )  # fmt: skip
@@ -507,7 +511,7 @@ def _contact_patch(
         vx = lin[0] + wy * rz - wz * ry
         vy = lin[1] + wz * rx - wx * rz
         vz = lin[2] + wx * ry - wy * rx
-        ax, ay, az = _alpha(nx, ny, nz, vx, vy, vz, coeffs, leading, mu_surf, up_tol)
+        ax, ay, az = rft3d_alpha_kernel(nx, ny, nz, vx, vy, vz, coeffs, leading, mu_surf, up_tol)
         if ax == 0.0 and ay == 0.0 and az == 0.0:
             continue
         found = True

@@ -13,7 +13,7 @@ backtracking line search; a step whose iteration fails is retried as 2, 4, ... 3
 means a force residual below ``tolerance * m g``. For the implicit solve the force law is made
 continuous: the leading-edge switch of RFT is smoothed over ``|n . v| / |v| < 0.01`` (an odd ramp, so
 sums over many elements change at second order) and the DRFT split of the contact arc moves
-continuously as elements enter (see :func:`terradyn.rft._kernels_drft.drft_wrench_kernel`). With the
+continuously as elements enter (see :func:`terradyn.rft.kernels.drft_wrench_kernel`). With the
 sharp rules the implicit equations often have no root (it sits on a jump), steps end with force
 residuals up to a quarter of m g and the steady state is biased (0.26 m MS wheel, 130 N, 5 rad/s: DRFT
 slip 0.68, against 0.727 from the quasi-static DRFT solve and 0.726 with the smoothing). A body without

@@ -355,7 +355,7 @@ def _zero_omega(omega: float) -> float:
 def _contact_angles(model: TerrainModel, body: Body, pose: Pose2D, twist: Twist2D) -> tuple[float, float]:
     """Front (entry) and rear (exit) angles [rad] of the loaded contact, from the downward vertical."""
     if isinstance(model, RFTModel):
-        from ..rft._kernels import rft_contact_angles_kernel
+        from ..rft.kernels import rft_contact_angles_kernel
 
         el = body.discretize(model.element_size)
         hi, lo, found = rft_contact_angles_kernel(

@@ -92,7 +92,7 @@ def _poly(
 
 
 @nb.njit(cache=True, fastmath=_FAST, error_model="numpy", nogil=True, inline="always")
-def _alpha(
+def rft3d_alpha_kernel(
     nx: float,
     ny: float,
     nz: float,
@@ -154,7 +154,7 @@ def _alpha(
 
 
 @nb.njit(cache=True, fastmath=_FAST, error_model="numpy", nogil=True)
-def _wrench_range(
+def rft3d_wrench_range_kernel(
     centroids: np.ndarray,
     normals: np.ndarray,
     areas: np.ndarray,
@@ -193,7 +193,7 @@ def _wrench_range(
         vx = lin[0] + wy * rz - wz * ry
         vy = lin[1] + wz * rx - wx * rz
         vz = lin[2] + wx * ry - wy * rx
-        ax, ay, az = _alpha(nx, ny, nz, vx, vy, vz, coeffs, leading, mu_surf, up_tol)
+        ax, ay, az = rft3d_alpha_kernel(nx, ny, nz, vx, vy, vz, coeffs, leading, mu_surf, up_tol)
         w = xi * depth * areas[i]
         gx, gy, gz = ax * w, ay * w, az * w
         fx += gx
@@ -229,7 +229,7 @@ def rft3d_wrench_kernel(
     velocity ``lin`` (3,) [m/s] and angular velocity ``ang`` (3,) [rad/s], both in the world frame.
     """
     out = np.empty(6)
-    res = _wrench_range(
+    res = rft3d_wrench_range_kernel(
         centroids, normals, areas, rot, pos, lin, ang, coeffs, xi, surface, leading, mu_surf, up_tol,
         about, 0, areas.shape[0],
     )  # fmt: skip
@@ -260,7 +260,7 @@ def rft3d_wrench_parallel_kernel(
     chunks = (n + _CHUNK - 1) // _CHUNK
     partial = np.zeros((chunks, 6))
     for c in nb.prange(chunks):
-        res = _wrench_range(
+        res = rft3d_wrench_range_kernel(
             centroids, normals, areas, rot, pos, lin, ang, coeffs, xi, surface, leading, mu_surf,
             up_tol, about, c * _CHUNK, min(n, (c + 1) * _CHUNK),
         )  # fmt: skip
@@ -295,7 +295,7 @@ def rft3d_wrench_many_kernel(
     m = rots.shape[0]
     out = np.empty((m, 6))
     for j in nb.prange(m):
-        res = _wrench_range(
+        res = rft3d_wrench_range_kernel(
             centroids, normals, areas, rots[j], positions[j], lins[j], angs[j], coeffs, xi, surface,
             leading, mu_surf, up_tol, abouts[j], 0, areas.shape[0],
         )  # fmt: skip
@@ -324,7 +324,7 @@ def rft3d_tractions_kernel(
         depth = surface - centroids[i, 2]
         if depth <= 0.0:
             continue
-        ax, ay, az = _alpha(
+        ax, ay, az = rft3d_alpha_kernel(
             normals[i, 0], normals[i, 1], normals[i, 2], velocities[i, 0], velocities[i, 1],
             velocities[i, 2], coeffs, leading, mu_surf, up_tol,
         )  # fmt: skip

@@ -165,10 +165,10 @@ def dem_gravity_pair(
 
 def _run_case(base: WheelTest, factor: float, seed: int, *, slip: float, travel: float, grain_diameter: float,
               packing: str, rows: int) -> tuple[dict[str, Any], dict[str, np.ndarray]]:  # fmt: skip
-    from ..dem.wheel import _radius, run_wheel
+    from ..dem.wheel import run_wheel, wheel_radius
 
     test = scale_test(base, ScaleFactors(gravity=factor)) if factor != 1.0 else base
-    r = _radius(base.body)  # the wheel's nominal radius, as run_wheel takes it
+    r = wheel_radius(base.body)  # the wheel's nominal radius, as run_wheel takes it
     duration = travel / ((1.0 - slip) * test.omega * r)
     start = time.perf_counter()
     res = run_wheel(test.body, test.material, load=test.load, omega=test.omega, slip=slip, duration=duration,
