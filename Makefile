@@ -35,6 +35,7 @@ bench: $(TSTAMP)
 lint: $(TSTAMP)
 	$(BIN)/ruff check src tests benchmarks examples
 	$(BIN)/mypy
+	$(BIN)/lint-imports
 
 clean:
 	rm -rf $(VENV) build dist src/*.egg-info terradyn-demo

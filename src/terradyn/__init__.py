@@ -16,8 +16,7 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 from ._threads import apply_environment, get_threads, set_threads
-
-__version__ = "0.1.0"
+from ._version import __version__
 
 # Subpackages and modules loaded on first access (``terradyn.<name>``).
 _SUBMODULES = frozenset(

@@ -124,9 +124,9 @@ def test_registry_rows_and_plugins():
     for it in ITEMS:
         shown = [m for m, _ in rows_of(it)]
         assert set(shown) <= set(it.models)
-    from terradyn.studies.registry import STUDIES, _load_plugins
+    from terradyn.studies.registry import STUDIES, load_studies
 
-    _load_plugins()  # the reworked ch. 7 and ch. 8 computations are studies of their own too
+    load_studies()  # the reworked ch. 7 and ch. 8 computations are studies of their own too
     assert {"flapped-optimisation", "high-speed-criterion", "wedges", "lift-drag"} <= set(STUDIES)
     with pytest.raises(Exception, match="models of"):
         register_row("fig-6-8", "dem", "x.y:z")

@@ -68,7 +68,7 @@ def _root() -> Any:
     import typer.main
     from typer.core import TyperGroup
 
-    from .. import __version__
+    from .._version import __version__
 
     class LazyGroup(TyperGroup):
         def list_commands(self, ctx: Any) -> list[str]:
@@ -353,7 +353,7 @@ def _close_figures(before: set[int]) -> None:
 def _guarded(args: list[str]) -> int:
     """Run and turn every exception except interrupts into (one line, exit code)."""
     if args == ["--version"]:  # answered without importing the command line framework
-        from .. import __version__
+        from .._version import __version__
 
         sys.stdout.write(f"terradyn {__version__}\n")
         return 0

@@ -20,10 +20,10 @@ def list_(
     out: str | None = OUT,
 ) -> None:
     """List the built-in studies."""
-    from ..studies.registry import STUDIES, _load_plugins
+    from ..studies.registry import STUDIES, load_studies
 
     out_path = out_file("--out", out)
-    _load_plugins()
+    load_studies()
     emit([{"study": k, "about": v[2]} for k, v in sorted(STUDIES.items())], fmt, out_path)
 
 
@@ -37,11 +37,11 @@ def run(
 ) -> None:
     """Run a study; write its tables (CSV) and plots (PNG) to a folder and print a summary."""
     from ..io import current_output_set
-    from ..studies.registry import STUDIES, _load_plugins, run_study
+    from ..studies.registry import STUDIES, load_studies, run_study
 
     folder = out_folder("--out", out)
     assert folder is not None
-    _load_plugins()
+    load_studies()
     if study.endswith(".toml"):
         input_file("STUDY", study)
     elif study not in STUDIES:

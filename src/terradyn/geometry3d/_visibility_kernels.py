@@ -7,7 +7,9 @@ import math
 import numba
 import numpy as np
 
-from .visibility import _EDGE
+#: barycentric slack: a ray through a shared edge (or vertex) counts as crossing, whatever the round-off
+EDGE_SLACK = 1e-9
+_EDGE = EDGE_SLACK
 
 
 @numba.njit(cache=True, inline="always")

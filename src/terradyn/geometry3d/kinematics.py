@@ -26,8 +26,17 @@ __all__ = [
     "Twist3D",
     "Wrench3D",
     "rotation_from_rpy",
+    "rotations_y",
     "rpy_from_rotation",
 ]
+
+
+def rotations_y(thetas: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Rotation matrices (P, 3, 3) by the angles ``thetas`` (P,) [rad] about +y (a wheel's spin sense)."""
+    c, s = np.cos(thetas), np.sin(thetas)
+    r = np.zeros((thetas.size, 3, 3))
+    r[:, 0, 0], r[:, 0, 2], r[:, 1, 1], r[:, 2, 0], r[:, 2, 2] = c, s, 1.0, -s, c
+    return r
 
 
 def _vector3(field: str, value: ArrayLike) -> NDArray[np.float64]:

@@ -19,12 +19,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ._visibility_kernels import EDGE_SLACK as _EDGE
 from .mesh import TriangleMesh
 
 __all__ = ["visible_facets"]
-
-# Barycentric slack: a ray through a shared edge (or vertex) counts as crossing, whatever the round-off.
-_EDGE = 1e-9
 
 
 def _directions(directions: ArrayLike) -> NDArray[np.float64]:

@@ -53,6 +53,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, SolverError, check_finite, check_positive, check_range
 from ..geometry3d import TriangleMesh
+from ..geometry3d.kinematics import rotations_y
 from ..kinematics import SlipDefinition
 from ..materials import Material
 from ..results import TableResult
@@ -219,7 +220,7 @@ def wheel_period_3d(mesh: TriangleMesh, *, tolerance: float | None = None) -> fl
     distinct = max(1, int(np.count_nonzero(gaps > tol / rmax)))
     grid = _PointGrid(v, tol)
     for k in sorted((d for d in range(2, distinct + 1) if distinct % d == 0), reverse=True):
-        rot = _rotations_y(np.array([2.0 * math.pi / k]))[0]
+        rot = rotations_y(np.array([2.0 * math.pi / k]))[0]
         if grid.all_near(v @ rot.T):
             return 2.0 * math.pi / k
     return 2.0 * math.pi
@@ -274,14 +275,6 @@ def _check_mesh(mesh: TriangleMesh) -> TriangleMesh:
     if not isinstance(mesh, TriangleMesh):
         raise InputError("mesh", type(mesh).__name__, "a terradyn.geometry3d.TriangleMesh")
     return mesh
-
-
-def _rotations_y(thetas: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Rotations (P, 3, 3) by the wheel angles ``thetas`` [rad] about +y (the spin sense)."""
-    c, s = np.cos(thetas), np.sin(thetas)
-    r = np.zeros((thetas.size, 3, 3))
-    r[:, 0, 0], r[:, 0, 2], r[:, 1, 1], r[:, 2, 0], r[:, 2, 2] = c, s, 1.0, -s, c
-    return r
 
 
 @dataclass(frozen=True, eq=False)
@@ -508,7 +501,7 @@ def _setup(
     elif math.isnan(span):
         span = wheel_period_3d(mesh)
     thetas = np.arange(phase_count) * span / phase_count
-    rotations = _rotations_y(thetas)
+    rotations = rotations_y(thetas)
     wheel = _Wheel3D(
         mesh, medium, np.array([kin.longitudinal_velocity, kin.lateral_velocity, 0.0]),
         np.array([0.0, kin.omega, 0.0]), rotations, surface, bool(leading_edge), surface_friction,
@@ -619,13 +612,13 @@ def _solve_compiled(wheel: _Wheel3D, lowest: NDArray[np.float64], load: float, w
     sinkage (mean, min, max), contact patch) of the steady state: the whole solve compiled."""
     import numba
 
-    from ..rft.rft3d import UPWARD_TOLERANCE, _medium
+    from ..rft.rft3d import UPWARD_TOLERANCE, rft3d_medium_scale
     from . import _steady_kernels as k
 
     low, high = wheel.surface, wheel.surface - float(lowest.min())
     centroids, normals, areas = wheel.mesh.kernel_arrays
     order = k.rft3d_facet_order_kernel(centroids, normals, areas, wheel.rotations, wheel.surface, low, high)
-    xi, mu = _medium(wheel.medium, wheel.surface_friction, 9.81)
+    xi, mu = rft3d_medium_scale(wheel.medium, wheel.surface_friction, 9.81)
     out = np.zeros(30)
     with numba.parallel_chunksize(1):  # scan items differ in size: hand them out one at a time
         status = k.rft3d_steady_kernel(

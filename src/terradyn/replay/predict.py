@@ -348,8 +348,8 @@ def _phases_3d(mesh: Any, wheel: WheelSpec, model: ReplayModel) -> np.ndarray:
 
 
 def _predict_3d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
+    from ..geometry3d.kinematics import rotations_y
     from ..locomotion.steady3d import (
-        _rotations_y,
         wheel_kinematics_3d,
         wheel_nominal_radius_3d,
         wheel_steady_3d,
@@ -391,7 +391,7 @@ def _predict_3d(row: RunRow, model: ReplayModel) -> dict[str, float | None]:
             **kinematics,
         )  # fmt: skip
         return _values(res.drawbar_pull_N, res.drive_torque_Nm, res.sinkage_m, res.side_force_N, row.load)
-    rotations = _rotations_y(thetas)
+    rotations = rotations_y(thetas)
     linear = np.array([vx, vy, 0.0])
     angular = np.array([0.0, omega, 0.0])
     v = mesh.vertices

@@ -66,7 +66,7 @@ def package_versions() -> dict[str, str]:
     """Versions of terradyn, Python and the numerical packages the report depends on."""
     import importlib.metadata as md
 
-    from .. import __version__
+    from .._version import __version__
 
     out = {"terradyn": __version__, "python": platform.python_version()}
     for name in ("numpy", "scipy", "numba", "matplotlib", "pandas"):
@@ -153,7 +153,7 @@ def run_unit(task: tuple[str, str, bool, str]) -> dict[str, Any]:
     import matplotlib
 
     matplotlib.use("Agg")
-    from .. import __version__
+    from .._version import __version__
     from ..errors import TerradynError
 
     key, model, quick, folder = task
@@ -188,7 +188,7 @@ def run_unit(task: tuple[str, str, bool, str]) -> dict[str, Any]:
 
 
 def _cached(folder: Path, key: str, model: str, quick: bool) -> dict[str, Any] | None:
-    from .. import __version__
+    from .._version import __version__
 
     path = cache_path(folder, key, model, quick)
     try:

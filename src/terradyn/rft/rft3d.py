@@ -80,6 +80,7 @@ __all__ = [
     "agarwal2023_xi_material",
     "rft3d_facet_forces",
     "rft3d_facet_tractions",
+    "rft3d_medium_scale",
     "rft3d_wrench",
     "rft3d_wrench_many",
 ]
@@ -448,8 +449,11 @@ class RFT3DFacetForces:
         return pd.DataFrame(cols)
 
 
-def _medium(medium: Material | float, surface_friction: float | None, g: float) -> tuple[float, float]:
-    """(xi [N/m^3], kernel friction cap) from a Material or a given xi."""
+def rft3d_medium_scale(
+    medium: Material | float, surface_friction: float | None, g: float
+) -> tuple[float, float]:
+    """(xi [N/m^3], kernel friction cap [-]) from a Material or a given xi; the cap is
+    ``surface_friction`` (None: the medium's, and no cap for a bare xi), as the kernels take it."""
     if isinstance(medium, Material):
         xi = agarwal2023_xi_material(medium, g=g)
         if surface_friction is None:
@@ -521,7 +525,7 @@ def rft3d_facet_forces(
     Agarwal, Goldman & Kamrin, PNAS 120, e2214017120 (2023). doi:10.1073/pnas.2214017120
     """
     m = _check_mesh(mesh)
-    xi, mu = _medium(medium, surface_friction, g)
+    xi, mu = rft3d_medium_scale(medium, surface_friction, g)
     surface = check_finite("surface_level", surface_level)
     point = _about(pose, about)
     offsets = m.centroids @ pose.rotation.T
@@ -574,7 +578,7 @@ def rft3d_wrench(
         ).wrench  # fmt: skip
     from ._kernels3d import rft3d_wrench_kernel, rft3d_wrench_parallel_kernel
 
-    xi, mu = _medium(medium, surface_friction, g)
+    xi, mu = rft3d_medium_scale(medium, surface_friction, g)
     point = _about(pose, about)
     use_parallel = m.facet_count > 100_000 if parallel is None else bool(parallel)
     kernel = rft3d_wrench_parallel_kernel if use_parallel else rft3d_wrench_kernel
@@ -627,7 +631,7 @@ def rft3d_wrench_many(
     v = _stack("linear", linear, (count, 3))
     w = _stack("angular", angular, (count, 3))
     a = p.copy() if about is None else _stack("about", about, (count, 3))
-    xi, mu = _medium(medium, surface_friction, g)
+    xi, mu = rft3d_medium_scale(medium, surface_friction, g)
     return rft3d_wrench_many_kernel(
         *m.kernel_arrays, r, p, v, w, agarwal2023_coefficients(fit), xi,
         check_finite("surface_level", surface_level), bool(leading_edge), mu, UPWARD_TOLERANCE, a,

@@ -35,8 +35,8 @@ from pydantic import Field
 from ..errors import InputError
 from ..geometry import Plate, WheelCircular
 from ..results import TableResult
+from ._base import StudyEntry, StudyOutput, _Params
 from .dem_scaling import DIMENSIONLESS, _medium, check_case
-from .registry import StudyOutput, _Params, register_study
 
 __all__ = ["CalibratedWheelResult", "dem_calibrated_wheel", "plot_calibrated_wheel"]
 
@@ -467,9 +467,13 @@ def _run(p: DEMCalibratedParams) -> StudyOutput:
     )
 
 
-register_study(
-    "dem-calibrated",
-    DEMCalibratedParams,
-    _run,
-    "DEM plate test calibrates RFT and MPM; all three roll a wheel",
-)
+def study_entries() -> tuple[StudyEntry, ...]:
+    """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
+    return (
+        (
+            "dem-calibrated",
+            DEMCalibratedParams,
+            _run,
+            "DEM plate test calibrates RFT and MPM; all three roll a wheel",
+        ),
+    )

@@ -23,8 +23,8 @@ from ..geometry import Plate
 from ..materials import Material
 from ..results import TableResult
 from ..rft import li2013_alpha_material
+from ._base import StudyEntry, StudyOutput, _Params
 from .mpm_compare import _rft_on_body, alpha_scale_and_shape, style_alpha_axes
-from .registry import StudyOutput, _Params, register_study
 
 __all__ = ["dem_alpha_map", "dem_plate_body", "window_alpha"]
 
@@ -260,4 +260,6 @@ def _run_alpha(p: DEMAlphaParams) -> StudyOutput:
     return StudyOutput({"dem_alpha": t}, {"dem_alpha": fig}, summary)
 
 
-register_study("dem-alpha", DEMAlphaParams, _run_alpha, "plate alpha over angle and direction: DEM vs RFT")
+def study_entries() -> tuple[StudyEntry, ...]:
+    """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
+    return (("dem-alpha", DEMAlphaParams, _run_alpha, "plate alpha over angle and direction: DEM vs RFT"),)

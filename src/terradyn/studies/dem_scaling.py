@@ -44,7 +44,7 @@ from ..geometry import WheelCircular
 from ..materials import Material
 from ..results import TableResult
 from ..scaling import ScaleFactors, WheelTest, scale_test
-from .registry import StudyOutput, _Params, register_study
+from ._base import StudyEntry, StudyOutput, _Params
 
 __all__ = ["DIMENSIONLESS", "GravityPairResult", "dem_gravity_pair", "pair_comparison"]
 
@@ -333,6 +333,13 @@ def _run_gravity(p: DEMGravityParams) -> StudyOutput:
     )
 
 
-register_study(
-    "dem-gravity", DEMGravityParams, _run_gravity, "DEM wheel at g, g/6, g/2 (Slonaker scaling) vs bed seeds"
-)
+def study_entries() -> tuple[StudyEntry, ...]:
+    """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
+    return (
+        (
+            "dem-gravity",
+            DEMGravityParams,
+            _run_gravity,
+            "DEM wheel at g, g/6, g/2 (Slonaker scaling) vs bed seeds",
+        ),
+    )

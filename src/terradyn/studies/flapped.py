@@ -12,7 +12,7 @@ from .. import materials
 from ..errors import SolverError
 from ..optimize import flapped_wheel_performance
 from ..results import TableResult
-from .registry import StudyOutput, _Params, register_study
+from ._base import StudyEntry, StudyOutput, _Params
 
 __all__ = ["FlappedParams", "flapped_wheel_sweep"]
 
@@ -154,9 +154,13 @@ def _run(p: FlappedParams) -> StudyOutput:
     return StudyOutput({"flapped_wheels": t}, {"flapped_wheels": fig}, summary)
 
 
-register_study(
-    "flapped-wheels",
-    FlappedParams,
-    _run,
-    "normalised speed of flapped wheels vs flap count, length, angle, load, medium",
-)
+def study_entries() -> tuple[StudyEntry, ...]:
+    """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
+    return (
+        (
+            "flapped-wheels",
+            FlappedParams,
+            _run,
+            "normalised speed of flapped wheels vs flap count, length, angle, load, medium",
+        ),
+    )

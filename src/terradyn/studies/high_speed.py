@@ -723,10 +723,11 @@ def plot_onset_criterion(fit: OnsetFit) -> Any:
     return fig
 
 
-def _register() -> None:
+def study_entries() -> tuple[Any, ...]:
+    """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
     from pydantic import Field
 
-    from .registry import StudyOutput, _Params, register_study
+    from ._base import StudyOutput, _Params
 
     class OnsetCriterionParams(_Params):
         material: str = "poppy-cp"
@@ -752,12 +753,11 @@ def _register() -> None:
             {"onset_criterion": fit.table}, {"onset_criterion": plot_onset_criterion(fit)}, summary
         )
 
-    register_study(
-        "high-speed-criterion",
-        OnsetCriterionParams,
-        run,
-        "slip-onset criterion of the high-speed wheel as a formula in the dimensionless groups (ch. 8)",
+    return (
+        (
+            "high-speed-criterion",
+            OnsetCriterionParams,
+            run,
+            "slip-onset criterion of the high-speed wheel as a formula in the dimensionless groups (ch. 8)",
+        ),
     )
-
-
-_register()

@@ -16,7 +16,7 @@ from ..mpm.bodies import effective_body
 from ..mpm.wheel_runs import WHEEL_CELLS_ACROSS
 from ..results import TableResult
 from ..rft import li2013_alpha_material
-from .registry import StudyOutput, _Params, register_study
+from ._base import StudyEntry, StudyOutput, _Params
 
 __all__ = ["mpm_alpha_map", "mpm_wheel_versus_rft"]
 
@@ -349,5 +349,9 @@ def _run_wheel(p: MPMWheelParams) -> StudyOutput:
     return StudyOutput({"mpm_wheel": t}, {"mpm_wheel": fig}, t.records())
 
 
-register_study("mpm-alpha", MPMAlphaParams, _run_alpha, "plate alpha over angle and direction: MPM vs RFT")
-register_study("mpm-wheel", MPMWheelParams, _run_wheel, "forced-slip wheel: MPM vs the RFT steady solve")
+def study_entries() -> tuple[StudyEntry, ...]:
+    """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
+    return (
+        ("mpm-alpha", MPMAlphaParams, _run_alpha, "plate alpha over angle and direction: MPM vs RFT"),
+        ("mpm-wheel", MPMWheelParams, _run_wheel, "forced-slip wheel: MPM vs the RFT steady solve"),
+    )

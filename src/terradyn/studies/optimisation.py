@@ -26,7 +26,7 @@ from pydantic import Field
 
 from .. import materials
 from ..errors import SolverError
-from .registry import StudyOutput, _Params, register_study
+from ._base import StudyEntry, StudyOutput, _Params
 
 __all__ = ["FlappedOptimisationParams", "OptimisationStudy", "flapped_optimisation"]
 
@@ -232,9 +232,13 @@ def _run(p: FlappedOptimisationParams) -> StudyOutput:
     return StudyOutput({"optimisation_map": table}, {"optimisation": res.figure}, summary)
 
 
-register_study(
-    "flapped-optimisation",
-    FlappedOptimisationParams,
-    _run,
-    "flapped wheel: cost of transport over flap length and angle, optimum inside the bounds (ch. 7)",
-)
+def study_entries() -> tuple[StudyEntry, ...]:
+    """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
+    return (
+        (
+            "flapped-optimisation",
+            FlappedOptimisationParams,
+            _run,
+            "flapped wheel: cost of transport over flap length and angle, optimum inside the bounds (ch. 7)",
+        ),
+    )

@@ -7,36 +7,21 @@ against the study's parameter model (unknown or bad fields are errors naming the
 
 from __future__ import annotations
 
+import importlib
 import math
 import tomllib
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import Field, ValidationError
 
 from .. import materials
 from ..errors import InputError
-from ..results import TableResult
+from ._base import StudyEntry, StudyOutput, _Params
 
-__all__ = ["STUDIES", "StudyOutput", "load_study_file", "run_study"]
-
-
-@dataclass
-class StudyOutput:
-    """Tables (name -> TableResult), figures (name -> matplotlib figure) and a summary table."""
-
-    tables: dict[str, TableResult] = field(default_factory=dict)
-    figures: dict[str, Any] = field(default_factory=dict)
-    summary: list[dict[str, Any]] = field(default_factory=list)
-
-
-class _Params(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
-    material: str = "MS"
-    quick: bool = Field(False, description="Reduced resolution (used by the default test suite).")
+__all__ = ["STUDIES", "StudyOutput", "load_studies", "load_study_file", "register_study", "run_study"]
 
 
 class PlateDepthParams(_Params):
@@ -229,12 +214,12 @@ STUDIES: dict[str, tuple[type[_Params], Callable[[Any], StudyOutput], str]] = {
 
 
 def register_study(name: str, params: type[_Params], run: Callable[[Any], StudyOutput], about: str) -> None:
-    """Add a study to the registry (used by modules that provide more studies)."""
+    """Add a study of the user's to the registry (``terradyn study`` and :func:`run_study` then run it)."""
     STUDIES[name] = (params, run, about)
 
 
 def _validate(kind: str, values: dict[str, Any], where: str) -> _Params:
-    _load_plugins()
+    load_studies()
     if kind not in STUDIES:
         raise InputError(f"{where}kind", kind, f"one of {sorted(STUDIES)}")
     model = STUDIES[kind][0]
@@ -270,26 +255,38 @@ def load_study_file(path: str | Path) -> tuple[str, _Params]:
     return kind, _validate(kind, data.get("parameters", {}), f"{p.name}: ")
 
 
-def _load_plugins() -> None:
-    """Import the study modules that register themselves."""
-    from . import (  # noqa: F401
-        dem_calibrated,
-        dem_compare,
-        dem_scaling,
-        flapped,
-        high_speed,
-        mpm_compare,
-        optimisation,
-        wheel3d,
-        wheels,
-    )
+#: the modules whose ``study_entries()`` list the studies they provide (loaded on first use)
+_STUDY_MODULES = (
+    "dem_calibrated",
+    "dem_compare",
+    "dem_scaling",
+    "flapped",
+    "high_speed",
+    "mpm_compare",
+    "optimisation",
+    "wheel3d",
+    "wheels",
+)
+_LOADED = [False]
+
+
+def load_studies() -> None:
+    """Add the studies of :data:`_STUDY_MODULES` to :data:`STUDIES` (once); a study a user registered
+    under the same name stays."""
+    if _LOADED[0]:
+        return
+    _LOADED[0] = True
+    for name in _STUDY_MODULES:
+        entries: tuple[StudyEntry, ...] = importlib.import_module(f"{__package__}.{name}").study_entries()
+        for study, params, run, about in entries:
+            STUDIES.setdefault(study, (params, run, about))
 
 
 def run_study(
     name_or_file: str, *, quick: bool = False, overrides: dict[str, Any] | None = None
 ) -> tuple[str, StudyOutput]:
     """Run a named study with defaults, or a study TOML file. Returns (kind, output)."""
-    _load_plugins()
+    load_studies()
     if name_or_file.endswith(".toml"):
         kind, params = load_study_file(name_or_file)
         values = params.model_dump()

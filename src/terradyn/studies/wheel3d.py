@@ -34,7 +34,7 @@ from .. import materials
 from ..errors import InputError
 from ..materials import Material
 from ..results import TableResult
-from .registry import StudyOutput, _Params, register_study
+from ._base import StudyEntry, StudyOutput, _Params
 
 __all__ = [
     "Wheel3DVs2DParams",
@@ -423,15 +423,19 @@ def _run_width(p: Wheel3DWidthParams) -> StudyOutput:
     return StudyOutput({"wheel3d_width": t}, {"wheel3d_width": ax.figure}, summary)
 
 
-register_study(
-    "wheel3d-vs-2d",
-    Wheel3DVs2DParams,
-    _run_vs_2d,
-    "3D-RFT cylinder wheel vs plane RFT wheel x width (plate-matched media), force and torque ratios",
-)
-register_study(
-    "wheel3d-width",
-    Wheel3DWidthParams,
-    _run_width,
-    "edge effects: 3D/2D force ratios of a cylinder wheel versus width / radius and slip angle",
-)
+def study_entries() -> tuple[StudyEntry, ...]:
+    """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
+    return (
+        (
+            "wheel3d-vs-2d",
+            Wheel3DVs2DParams,
+            _run_vs_2d,
+            "3D-RFT cylinder wheel vs plane RFT wheel x width (plate-matched media), force and torque ratios",
+        ),
+        (
+            "wheel3d-width",
+            Wheel3DWidthParams,
+            _run_width,
+            "edge effects: 3D/2D force ratios of a cylinder wheel versus width / radius and slip angle",
+        ),
+    )

@@ -13,7 +13,7 @@ from ..geometry import WheelCircular
 from ..locomotion import force_slip_sweep
 from ..locomotion.models import ModelSpec
 from ..results import TableResult
-from .registry import StudyOutput, _Params, register_study
+from ._base import StudyEntry, StudyOutput, _Params
 
 __all__ = ["WheelForceSlipParams", "summarise_force_slip", "wheel_force_slip"]
 
@@ -102,9 +102,13 @@ def _run(p: WheelForceSlipParams) -> StudyOutput:
     )
 
 
-register_study(
-    "wheel-force-slip",
-    WheelForceSlipParams,
-    _run,
-    "force-slip and sinkage-slip of the 0.26 m wheel, RFT vs Wong-Reece, four media",
-)
+def study_entries() -> tuple[StudyEntry, ...]:
+    """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
+    return (
+        (
+            "wheel-force-slip",
+            WheelForceSlipParams,
+            _run,
+            "force-slip and sinkage-slip of the 0.26 m wheel, RFT vs Wong-Reece, four media",
+        ),
+    )
