@@ -1,4 +1,5 @@
-"""Drivers: steady (quasi-static) wheel solves and sweeps over any terrain model."""
+"""Drivers: one wheel-run contract over every engine (:func:`run_wheel`), steady (quasi-static) wheel
+solves, time integration and sweeps over any terrain model."""
 
 from typing import Any
 
@@ -9,6 +10,17 @@ from .steady import (
     wheel_steady,
 )
 from .sweeps import force_slip_sweep
+from .wheel_run import (
+    DEMSettings,
+    Dynamics,
+    Engine,
+    MPMSettings,
+    QuasiStatic,
+    WheelCase,
+    WheelRun,
+    compare_models,
+    run_wheel,
+)
 
 
 def __getattr__(name: str) -> Any:
@@ -30,10 +42,19 @@ def __getattr__(name: str) -> Any:
 
 __all__ = [
     "CoupledResult",
+    "DEMSettings",
+    "Dynamics",
+    "Engine",
+    "MPMSettings",
+    "QuasiStatic",
+    "WheelCase",
     "WheelDynamicsResult",
+    "WheelRun",
     "WheelSteady3DResult",
     "WheelSteadyResult",
+    "compare_models",
     "force_slip_sweep",
+    "run_wheel",
     "simulate_coupled",
     "simulate_wheel",
     "stable_time_step",

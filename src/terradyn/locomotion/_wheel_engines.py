@@ -1,0 +1,295 @@
+"""The time-stepped engines behind :func:`terradyn.locomotion.run_wheel`: dynamics of a force law, the
+MPM and the DEM, each mapped onto the one :class:`~terradyn.locomotion.wheel_run.WheelRun`."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+from ..kinematics import Pose2D
+from .wheel_run import (
+    HISTORY_KEYS,
+    DEMSettings,
+    Dynamics,
+    Engine,
+    MPMSettings,
+    WheelCase,
+    WheelRun,
+    _force_law,
+    _power,
+    _summary,
+)
+
+#: default drive of the time-stepped engines [rad of rotation]: the MPM's measured settling rule
+#: (:data:`terradyn.mpm.wheel_runs.DRIVE_RADIANS`, 4.5 rad, averaged over the last half)
+DRIVE_RADIANS = 4.5
+#: default drive of the force-law dynamics [revolutions]: the summary averages the last whole ones
+DYNAMICS_REVOLUTIONS = 3.0
+
+
+def _plane_body(case: WheelCase, engine: str) -> Any:
+    from ..geometry import Body
+
+    if not isinstance(case.wheel, Body):
+        raise InputError("wheel", type(case.wheel).__name__, f"a plane Body for {engine}")
+    if case.slip_angle != 0.0:
+        raise InputError(
+            "slip_angle", case.slip_angle, f"0 for {engine} (a plane engine)", "use model='rft3d'"
+        )
+    if case.sinkage is not None:
+        raise InputError(
+            "sinkage", case.sinkage, f"unset for {engine}: a time-stepped wheel sinks under a load"
+        )
+    return case.wheel
+
+
+def _history(columns: dict[str, Any]) -> dict[str, np.ndarray]:
+    return {k: np.asarray(columns[k], dtype=float) for k in HISTORY_KEYS if columns.get(k) is not None}
+
+
+# ------------------------------------------------------------------------------------ force-law dynamics
+def run_dynamics(
+    case: WheelCase, model: Any, entry: Any, s: Dynamics, progress: Callable[[float, float], None] | None
+) -> WheelRun:
+    """A force law integrated in time: compiled for a free rft/drft wheel, else the coupled driver."""
+    body = _plane_body(case, "dynamics")
+    material = case.material
+    assert case.load is not None
+    mass = s.mass if s.mass is not None else case.load / s.gravity
+    slip = case.classic_slip()
+    if entry is not None and entry.name in ("rft", "drft") and slip is None:
+        return _compiled(case, entry.name, body, material, mass, s)
+    if case.drive_torque is not None:
+        raise InputError("drive_torque", case.drive_torque, "a torque only through rft or drft in dynamics")
+    terrain = _force_law(model, entry, material, s.element_size)
+    return _coupled(case, terrain, body, material, mass, slip, s, progress)
+
+
+def _compiled(case: WheelCase, name: str, body: Any, material: Any, mass: float, s: Dynamics) -> WheelRun:
+    from .dynamics import simulate_wheel
+
+    duration = case.duration or DYNAMICS_REVOLUTIONS * 2.0 * math.pi / case.omega
+    omega, torque = (None, case.drive_torque) if case.drive_torque is not None else (case.omega, None)
+    res = simulate_wheel(
+        body,
+        material,
+        model=name,
+        mass=mass,
+        duration=duration,
+        dt=s.dt,
+        omega=omega,
+        torque=torque,
+        drawbar_load=case.drawbar_load,
+        gravity=s.gravity,
+        output_every=s.output_every,
+        element_size=s.element_size,
+    )
+    st = res.steady_summary()
+    summary = _summary(
+        sinkage_m=st["sinkage_m"],
+        drawbar_pull_N=st["drawbar_pull_N"],
+        drive_torque_Nm=st["drive_torque_Nm"],
+        vertical_force_N=st["vertical_force_N"],
+        slip=st["slip"],
+        omega_rad_s=st["omega_rad_s"],
+        forward_velocity_m_s=st["forward_velocity_m_s"],
+        load_N=case.load,
+        power_W=st["power_W"],
+    )
+    history = _history(
+        {
+            "time_s": res.t,
+            "x_m": res.x,
+            "sinkage_m": res.sinkage,
+            "drawbar_pull_N": res.fx,
+            "vertical_force_N": res.fz,
+            "drive_torque_Nm": res.torque,
+            "omega_rad_s": res.omega,
+            "forward_velocity_m_s": res.vx,
+        }
+    )
+    meta = {"averaging_window_s": st["averaging_window_s"], "revolutions": st["revolutions"], "dt_s": res.dt}
+    return WheelRun(name, Engine.DYNAMICS, case, summary, history, meta, res)
+
+
+def _coupled(
+    case: WheelCase,
+    terrain: Any,
+    body: Any,
+    material: Any,
+    mass: float,
+    slip: float | None,
+    s: Dynamics,
+    progress: Callable[[float, float], None] | None,
+) -> WheelRun:
+    from .coupled import simulate_coupled
+    from .dynamics import stable_time_step
+
+    if case.drawbar_load != 0.0:
+        raise InputError("drawbar_load", case.drawbar_load, "0 here (the coupled driver has no towed load)")
+    radius = case.radius
+    omega = case.drive()[1]
+    vx = None if slip is None else (1.0 - slip) * omega * radius
+    dt = s.dt if s.dt is not None else 0.25 * stable_time_step(body, material, mass=mass, omega_max=omega)
+    duration = case.duration or DRIVE_RADIANS / omega
+    lowest = float(np.min(np.concatenate(body.outline())[:, 1]))
+    res = simulate_coupled(
+        body,
+        terrain,
+        load=case.load or 0.0,
+        pose=Pose2D(0.0, -lowest, 0.0),
+        duration=duration,
+        dt=dt,
+        omega=omega,
+        vx=vx,
+        mass=mass,
+        gravity=s.gravity,
+        progress=progress,
+    )
+    sm, se = res.summary, res.series
+    torque = sm["drive_torque_Nm"]
+    summary = _summary(
+        sinkage_m=sm["sinkage_m"],
+        drawbar_pull_N=sm["force_x_N"],
+        drive_torque_Nm=torque,
+        vertical_force_N=sm["force_z_N"],
+        slip=sm.get("slip"),
+        omega_rad_s=omega,
+        forward_velocity_m_s=sm["vx_m_s"],
+        load_N=case.load,
+        power_W=_power(torque, omega),
+    )
+    history = _history(
+        {
+            "time_s": se["time_s"],
+            "x_m": se["x_m"],
+            "sinkage_m": se["sinkage_m"],
+            "drawbar_pull_N": se["force_x_N"],
+            "vertical_force_N": se["force_z_N"],
+            "drive_torque_Nm": -se["torque_y_Nm"],
+            "forward_velocity_m_s": se["vx_m_s"],
+        }
+    )
+    name = str(getattr(terrain, "name", "user model"))
+    return WheelRun(name, Engine.DYNAMICS, case, summary, history, {"dt_s": dt, **res.metadata}, res)
+
+
+# ------------------------------------------------------------------------------------------------- MPM
+def run_mpm(case: WheelCase, s: MPMSettings, progress: Callable[[float, float], None] | None) -> WheelRun:
+    """The plane-strain MPM wheel (:func:`terradyn.mpm.run_wheel`)."""
+    from ..mpm import Bed, Drive, Outputs, Resolution
+    from ..mpm import run_wheel as mpm_run_wheel
+
+    body = _plane_body(case, "the MPM")
+    drive = s.drive if s.drive is not None else Drive()
+    if case.duration is not None:
+        drive = replace(drive, duration=case.duration)
+    outputs = s.outputs if s.outputs is not None else Outputs()
+    if progress is not None:
+        outputs = replace(outputs, progress=progress)
+    spin, forward = _mpm_spin(case)
+    assert case.load is not None
+    res = mpm_run_wheel(
+        body,
+        case.material,
+        load=case.load,
+        drawbar_load=case.drawbar_load,
+        bed=s.bed if s.bed is not None else Bed(),
+        resolution=s.resolution if s.resolution is not None else Resolution(),
+        outputs=outputs,
+        drive=drive,
+        **spin,
+        **forward,
+    )
+    sm, se = res.summary, res.series
+    summary = _summary(
+        sinkage_m=sm["sinkage_m"],
+        drawbar_pull_N=sm["drawbar_pull_N"],
+        drive_torque_Nm=sm["drive_torque_Nm"],
+        vertical_force_N=sm["force_z_N"],
+        slip=sm.get("slip"),
+        omega_rad_s=sm["omega_rad_s"],
+        forward_velocity_m_s=sm["forward_velocity_m_s"],
+        load_N=sm["load_N"],
+        power_W=_power(sm["drive_torque_Nm"], sm["omega_rad_s"]),
+    )
+    history = _history(
+        {
+            "time_s": se.get("time_s"),
+            "x_m": se.get("x_m"),
+            "sinkage_m": se.get("sinkage_m"),
+            "drawbar_pull_N": se.get("drawbar_pull_N"),
+            "vertical_force_N": se.get("force_z_N"),
+            "drive_torque_Nm": se.get("drive_torque_Nm"),
+            "omega_rad_s": se.get("omega_rad_s"),
+            "forward_velocity_m_s": se.get("vx_m_s"),
+        }
+    )
+    return WheelRun("mpm", Engine.MPM, case, summary, history, dict(res.metadata), res)
+
+
+def _mpm_spin(case: WheelCase) -> tuple[dict[str, Any], dict[str, Any]]:
+    """(spin keywords, forward-motion keywords) of the MPM's run_wheel for the case's drive."""
+    if case.drive_torque is not None:
+        return {"drive_torque": case.drive_torque}, {}
+    if case.rim_speed is not None and case.carriage_speed is not None:
+        # speeds as given: a locked or slowly turning wheel towed at the carriage speed
+        return {"omega": case.rim_speed / case.radius}, {"forward_speed": case.carriage_speed}
+    return {"omega": case.omega}, {"slip": case.classic_slip()}
+
+
+# ------------------------------------------------------------------------------------------------- DEM
+def run_dem(case: WheelCase, s: DEMSettings, progress: Callable[[float, float], None] | None) -> WheelRun:
+    """The LAMMPS DEM wheel (:func:`terradyn.dem.run_wheel`); forced slip only."""
+    from ..dem.wheel import run_wheel as dem_run_wheel
+
+    if case.sinkage is not None:
+        raise InputError("sinkage", case.sinkage, "unset for the DEM: a DEM wheel sinks under a load")
+    if case.drive_torque is not None:
+        raise InputError("drive_torque", case.drive_torque, "unset for the DEM (it prescribes spin and slip)")
+    slip = case.classic_slip()
+    if slip is None:
+        raise InputError("slip", None, "a slip for the DEM (it prescribes spin and forward speed)")
+    if case.drawbar_load != 0.0:
+        raise InputError("drawbar_load", case.drawbar_load, "0 for the DEM (its forward speed is prescribed)")
+    if case.slip_angle != 0.0:
+        raise InputError("slip_angle", case.slip_angle, "0 for the DEM wheel")
+    omega = case.drive()[1]
+    duration = case.duration or DRIVE_RADIANS / omega
+    assert case.load is not None
+    res = dem_run_wheel(
+        case.wheel,
+        case.material,
+        load=case.load,
+        omega=omega,
+        slip=slip,
+        duration=duration,
+        bed=s.bed,
+        kind=s.kind,
+        packing=s.packing,
+        grain_diameter=s.grain_diameter,
+        seed=s.seed,
+        record_interval=s.record_interval,
+        checkpoint_path=s.checkpoint_path,
+        resume=s.resume,
+        progress=progress,
+    )
+    sm, h = res.summary, res.history
+    summary = _summary(
+        sinkage_m=sm["sinkage_m"],
+        drawbar_pull_N=sm["drawbar_pull_N"],
+        drive_torque_Nm=sm["drive_torque_Nm"],
+        vertical_force_N=sm["vertical_force_N"],
+        slip=sm["slip"],
+        omega_rad_s=sm["omega_rad_s"],
+        forward_velocity_m_s=sm["forward_velocity_m_s"],
+        load_N=sm["load_N"],
+        power_W=_power(sm["drive_torque_Nm"], sm["omega_rad_s"]),
+    )
+    meta = {"grain_count": sm.get("grain_count"), "bed": dict(res.bed), "duration_s": duration}
+    return WheelRun("dem", Engine.DEM, case, summary, _history(dict(h)), meta, res)
