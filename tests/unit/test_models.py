@@ -130,3 +130,16 @@ def test_replay_takes_a_user_model_and_refuses_to_calibrate_it():
         ReplayModel("mine", terrain=RFTModel(materials.get("MS")), scale=2.0)
     with pytest.raises(InputError, match="calibration"):
         replay(rows, ReplayModel("mine", terrain=lambda m: RFTModel(m)), calibrate_on=0.5)
+
+
+def test_the_models_page_lists_every_model():
+    from pathlib import Path
+
+    page = (Path(__file__).parents[2] / "docs" / "models.md").read_text(encoding="utf-8")
+    section = page.split("## The model table", 1)[1].split("##", 1)[0]
+    table = [line for line in section.splitlines() if line.startswith("| `")]
+    assert [line.split("`")[1] for line in table] == [e.name for e in MODELS]
+    for line, entry in zip(table, MODELS, strict=True):
+        cells = [c.strip() for c in line.split("|")]
+        assert cells[2] == entry.title and cells[3] == entry.kind.value.replace("-", " ")
+        assert set(cells[6].split(", ")) == {u.replace("run-wheel", "run_wheel") for u in entry.uses}

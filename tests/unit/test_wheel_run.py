@@ -20,7 +20,7 @@ from terradyn.locomotion import (
     run_wheel,
     wheel_steady,
 )
-from terradyn.locomotion.wheel_run import HISTORY_KEYS, SUMMARY_KEYS
+from terradyn.locomotion.wheel_case import HISTORY_KEYS, SUMMARY_KEYS
 from terradyn.rft import RFTModel, rft_wrench
 
 WHEEL = WheelCircular(0.05, 0.03)

@@ -366,17 +366,17 @@ def drag(
 
 def _mpm_wheel(shape: str, width: float, sizes: dict[str, Any]) -> Any:
     """The wheel of an MPM command from --shape (circular, grousered or flapped) and its size flags."""
-    from .wheel_cmd import WheelShape, _shape_flags, wheel_body
+    from .wheel_options import WheelShape, shape_flags, wheel_body
 
     allowed = (WheelShape.circular, WheelShape.grousered, WheelShape.flapped)
     kind = next((k for k in allowed if k.value == shape), None)
     if kind is None:
         raise InputError("--shape", shape, "circular, grousered or flapped")
-    return wheel_body(kind, width, _shape_flags(kind, {**sizes, "points_file": None}))
+    return wheel_body(kind, width, shape_flags(kind, {**sizes, "points_file": None}))
 
 
 def _mpm_wheel_flags() -> Any:
-    from .wheel_cmd import WHEEL_SIZE_FLAGS
+    from .wheel_options import WHEEL_SIZE_FLAGS
 
     return with_flags("sizes", {k: v for k, v in WHEEL_SIZE_FLAGS.items() if k != "points_file"})
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from enum import Enum
 from pathlib import Path
 from typing import Any
 
@@ -15,7 +14,7 @@ from ..errors import InputError, check_finite
 from ..geometry import Body
 from ..materials import Material
 from ..models import model_entry, model_names
-from ._bodies import BodyKind, _declared, build_body
+from . import wheel_compare_cmd as _wheel_compare
 from ._common import (
     OutputFormat,
     atomic_write,
@@ -38,35 +37,17 @@ from .options import (
     OUT,
     PHASES,
     PLOT,
-    WHEEL_RADIUS,
     WHEEL_WIDTH,
     animation_file,
     input_file,
     out_file,
     plot_file,
-    with_flags,
 )
+from .wheel_options import WheelShape, shape_flags, wheel_body, wheel_flags
 
 app = typer.Typer(
     help="Wheel locomotion: steady solves, sweeps, free rolling.", no_args_is_help=True, rich_markup_mode=None
 )
-
-
-class WheelShape(str, Enum):
-    circular = "circular"
-    grousered = "grousered"
-    flapped = "flapped"
-    c_leg = "c-leg"
-    polygon = "polygon"
-
-
-_SHAPE_TO_BODY = {
-    WheelShape.circular: BodyKind.wheel,
-    WheelShape.grousered: BodyKind.grousered,
-    WheelShape.flapped: BodyKind.flapped,
-    WheelShape.c_leg: BodyKind.c_leg,
-    WheelShape.polygon: BodyKind.polygon,
-}
 
 
 def _model_help(use: str) -> str:
@@ -119,19 +100,6 @@ class KinematicsOptions:
     carriage_speed = typer.Option(
         None, "--carriage-speed", help="Axle speed over the ground [m/s] (with --rim-speed)."
     )
-
-
-#: the size flags of every wheel shape, declared once for all wheel commands
-WHEEL_SIZE_FLAGS = _declared(
-    ("radius", "thickness", "grouser_count", "grouser_height", "grouser_thickness", "hub_radius",
-     "flap_count", "flap_length", "flap_angle", "points_file"),
-    radius=WHEEL_RADIUS,
-)  # fmt: skip
-wheel_flags = with_flags("sizes", WHEEL_SIZE_FLAGS)
-
-
-def wheel_body(shape: WheelShape, width: float, flags: dict[str, Any]) -> Body:
-    return build_body(_SHAPE_TO_BODY[shape], width, **flags)
 
 
 def _steady_record(res: Any) -> dict[str, Any]:
@@ -220,7 +188,7 @@ def steady(
 ) -> None:
     """Sinkage, drawbar pull, drive torque and power of a wheel at a load (or sinkage) and slip."""
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
-    flags = _shape_flags(shape, sizes)
+    flags = shape_flags(shape, sizes)
     _load_or_sinkage(load, sinkage)
     kin = _kinematics(slip, slip_definition, rim_speed, carriage_speed)
     if model_entry(model, use="steady", field="--model").dimension == 3:
@@ -366,7 +334,7 @@ def self_propelled(
     from ..locomotion import wheel_self_propelled
 
     out_path = out_file("--out", out)
-    body = wheel_body(shape, width, _shape_flags(shape, sizes))
+    body = wheel_body(shape, width, shape_flags(shape, sizes))
     factory = model_factory(model, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size)
     res = wheel_self_propelled(
         body,
@@ -426,7 +394,7 @@ def sweep(
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     if workers is not None and not 1 <= workers <= 256:
         raise InputError("--workers", workers, "an integer in [1, 256]")
-    flags = _shape_flags(shape, sizes)
+    flags = shape_flags(shape, sizes)
     names = [m.strip() for m in model.split(",") if m.strip()]
     dimension = {n: model_entry(n, use="sweep", field="--model").dimension for n in names}
     spatial = [n for n in names if dimension[n] == 3]
@@ -547,25 +515,6 @@ def plot_sweep(columns: dict[str, Any], media: list[str], path: Path) -> None:
     save_figure(fig, path)
 
 
-def _shape_flags(shape: WheelShape, values: dict[str, Any]) -> dict[str, Any]:
-    keys = (
-        "radius",
-        "thickness",
-        "grouser_count",
-        "grouser_height",
-        "grouser_thickness",
-        "hub_radius",
-        "flap_count",
-        "flap_length",
-        "flap_angle",
-        "points_file",
-    )
-    flags = {k: values[k] for k in keys}
-    if shape in (WheelShape.flapped, WheelShape.polygon):
-        flags["radius"] = None  # the default --radius belongs to circular and grousered wheels
-    return flags
-
-
 @app.command("simulate")
 @wheel_flags
 def simulate(
@@ -599,7 +548,7 @@ def simulate(
     model = model_entry(model, use="dynamics", field="--model").name
     if out_path is not None and out_path.suffix == ".nc":
         _require("xarray", "--out", out, "the fields extra for .nc output (pip install 'terradyn[fields]')")
-    body = wheel_body(shape, width, _shape_flags(shape, sizes))
+    body = wheel_body(shape, width, shape_flags(shape, sizes))
     mat = materials.get(material)
     with spinner("simulating"):
         res = simulate_wheel(
@@ -767,3 +716,7 @@ def _steady_3d(
     if cull:
         rec["culled_facet_count"] = facets - res.facet_count
     return rec
+
+
+# one wheel case through several models: its own module, registered here with the wheel flags
+app.command("compare")(wheel_flags(_wheel_compare.compare))

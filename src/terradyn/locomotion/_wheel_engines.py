@@ -12,12 +12,13 @@ import numpy as np
 
 from ..errors import InputError
 from ..kinematics import Pose2D
-from .wheel_run import (
+from .wheel_case import (
     HISTORY_KEYS,
     DEMSettings,
     Dynamics,
     Engine,
     MPMSettings,
+    QuasiStatic,
     WheelCase,
     WheelRun,
     _force_law,
@@ -50,6 +51,150 @@ def _plane_body(case: WheelCase, engine: str) -> Any:
 
 def _history(columns: dict[str, Any]) -> dict[str, np.ndarray]:
     return {k: np.asarray(columns[k], dtype=float) for k in HISTORY_KEYS if columns.get(k) is not None}
+
+
+# ------------------------------------------------------------------------------------------ quasi-static
+def run_quasi_static(case: WheelCase, model: Any, entry: Any, s: QuasiStatic) -> WheelRun:
+    """The implicit steady solves: forced slip, free rolling or a prescribed sinkage; 3D for rft3d."""
+    if case.drive_torque is not None:
+        raise InputError(
+            "drive_torque",
+            case.drive_torque,
+            "unset for a quasi-static solve",
+            "a torque-driven wheel needs settings=Dynamics() or the MPM",
+        )
+    if entry is not None and entry.dimension == 3:
+        return _run_3d(case, entry.name, s)
+    if case.slip_angle != 0.0:
+        raise InputError("slip_angle", case.slip_angle, "0 for a plane model", "use model='rft3d'")
+    from ..geometry import Body
+
+    if not isinstance(case.wheel, Body):
+        raise InputError(
+            "wheel", type(case.wheel).__name__, "a plane Body for a 2D model (a mesh needs rft3d)"
+        )
+    material = case.material
+    terrain = _force_law(model, entry, material, s.element_size)
+    slip, omega = case.drive()
+    label = entry.name if entry is not None else str(getattr(terrain, "name", "user model"))
+    if case.sinkage is not None:
+        from .prescribed import wheel_at_sinkage
+
+        if slip is None:
+            raise InputError("slip", None, "a slip with a prescribed sinkage (a free wheel needs a load)")
+        res = wheel_at_sinkage(
+            case.wheel,
+            terrain,
+            case.sinkage,
+            slip,
+            omega=omega,
+            phase_count=s.phase_count,
+            slip_definition=case.slip_definition,
+        )
+        vertical = res.load_N
+    elif slip is None:
+        from .steady import wheel_self_propelled
+
+        assert case.load is not None
+        res = wheel_self_propelled(
+            case.wheel,
+            terrain,
+            case.load,
+            drawbar_load=case.drawbar_load,
+            omega=omega,
+            phase_count=s.phase_count,
+        )
+        vertical = case.load
+    else:
+        from .steady import wheel_steady
+
+        assert case.load is not None
+        res = wheel_steady(
+            case.wheel,
+            terrain,
+            case.load,
+            slip,
+            omega=omega,
+            phase_count=s.phase_count,
+            slip_definition=case.slip_definition,
+        )
+        vertical = case.load
+    summary = _summary(
+        sinkage_m=res.sinkage_m,
+        drawbar_pull_N=res.drawbar_pull_N,
+        drive_torque_Nm=res.drive_torque_Nm,
+        vertical_force_N=vertical,
+        slip=res.slip,
+        omega_rad_s=res.omega_rad_s,
+        forward_velocity_m_s=res.forward_velocity_m_s,
+        load_N=res.load_N,
+        power_W=res.power_W,
+    )
+    meta = {"phase_count": res.phase_count, "axle_height_m": res.axle_height_m}
+    return WheelRun(label, Engine.QUASI_STATIC, case, summary, {}, meta, res)
+
+
+def _mesh(wheel: Any) -> Any:
+    """A 3D wheel: a mesh as it is, a plane circular or grousered wheel extruded across its width."""
+    from ..geometry import WheelCircular, WheelGrousered
+    from ..geometry3d import TriangleMesh, wheel_cylinder, wheel_grousered
+
+    if isinstance(wheel, TriangleMesh):
+        return wheel
+    if isinstance(wheel, WheelGrousered):
+        return wheel_grousered(
+            wheel.radius,
+            wheel.width,
+            grouser_count=wheel.grouser_count,
+            grouser_height=wheel.grouser_height,
+            grouser_thickness=wheel.grouser_thickness,
+            circumferential_resolution=360,
+            axial_resolution=2,
+        )
+    if isinstance(wheel, WheelCircular):
+        return wheel_cylinder(wheel.radius, wheel.width, circumferential_resolution=360, axial_resolution=2)
+    raise InputError(
+        "wheel", type(wheel).__name__, "a TriangleMesh, WheelCircular or WheelGrousered for rft3d"
+    )
+
+
+def _run_3d(case: WheelCase, name: str, s: QuasiStatic) -> WheelRun:
+    from .steady3d import steady3d_record, wheel_at_sinkage_3d, wheel_steady_3d
+    from .wheel3d import rft3d_medium, wheel_contact_mesh
+
+    slip, omega = case.drive()
+    if slip is None:
+        raise InputError("slip", None, "a slip for rft3d (it has no free-rolling solve)")
+    mesh = _mesh(case.wheel)
+    if s.cull:
+        mesh = wheel_contact_mesh(mesh, slip_angle=case.slip_angle)
+    medium, note = rft3d_medium(case.material)
+    options: dict[str, Any] = {
+        "slip_angle": case.slip_angle,
+        "omega": omega,
+        "slip_definition": case.slip_definition,
+        "phase_count": s.phase_count,
+    }
+    if case.sinkage is not None:
+        res = wheel_at_sinkage_3d(mesh, medium, case.sinkage, slip, **options)
+    else:
+        assert case.load is not None
+        res = wheel_steady_3d(mesh, medium, case.load, slip, **options)
+    rec = steady3d_record(res)
+    summary = _summary(
+        sinkage_m=rec["sinkage_m"],
+        drawbar_pull_N=rec["drawbar_pull_N"],
+        drive_torque_Nm=rec["drive_torque_Nm"],
+        vertical_force_N=rec["vertical_force_N"],
+        side_force_N=rec["side_force_N"],
+        slip=rec["slip"],
+        omega_rad_s=res.omega_rad_s,
+        forward_velocity_m_s=res.longitudinal_velocity_m_s,
+        load_N=res.load_N,
+        power_W=rec["power_W"],
+    )
+    meta = {"facet_count": res.facet_count, "medium_note": note, "slip_angle_rad": case.slip_angle}
+    return WheelRun(name, Engine.QUASI_STATIC, case, summary, {}, meta, res)
 
 
 # ------------------------------------------------------------------------------------ force-law dynamics
