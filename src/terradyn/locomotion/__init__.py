@@ -10,17 +10,8 @@ from .steady import (
     wheel_steady,
 )
 from .sweeps import force_slip_sweep
-from .wheel_run import (
-    DEMSettings,
-    Dynamics,
-    Engine,
-    MPMSettings,
-    QuasiStatic,
-    WheelCase,
-    WheelRun,
-    compare_models,
-    run_wheel,
-)
+from .wheel_case import DEMSettings, Dynamics, Engine, MPMSettings, QuasiStatic, WheelCase, WheelRun
+from .wheel_run import compare_models, run_wheel
 
 
 def __getattr__(name: str) -> Any:

@@ -14,6 +14,7 @@ from ..errors import InputError
 from ..kinematics import Pose2D
 from .wheel_case import (
     HISTORY_KEYS,
+    SUMMARY_KEYS,
     DEMSettings,
     Dynamics,
     Engine,
@@ -47,6 +48,19 @@ def _plane_body(case: WheelCase, engine: str) -> Any:
             "sinkage", case.sinkage, f"unset for {engine}: a time-stepped wheel sinks under a load"
         )
     return case.wheel
+
+
+def _engine_summary(
+    values: dict[str, Any], renames: dict[str, str] | None = None, **given: Any
+) -> dict[str, Any]:
+    """The contract's summary from an engine's: each key read under the engine's name for it
+    (``renames``: contract key -> engine key), ``given`` values first, the power from torque and spin."""
+    names = renames or {}
+    out = {k: values.get(names.get(k, k)) for k in SUMMARY_KEYS}
+    out.update(given)
+    if "power_W" not in given:
+        out["power_W"] = _power(out["drive_torque_Nm"], out["omega_rad_s"])
+    return _summary(**out)
 
 
 def _history(columns: dict[str, Any]) -> dict[str, np.ndarray]:
@@ -235,17 +249,7 @@ def _compiled(case: WheelCase, name: str, body: Any, material: Any, mass: float,
         element_size=s.element_size,
     )
     st = res.steady_summary()
-    summary = _summary(
-        sinkage_m=st["sinkage_m"],
-        drawbar_pull_N=st["drawbar_pull_N"],
-        drive_torque_Nm=st["drive_torque_Nm"],
-        vertical_force_N=st["vertical_force_N"],
-        slip=st["slip"],
-        omega_rad_s=st["omega_rad_s"],
-        forward_velocity_m_s=st["forward_velocity_m_s"],
-        load_N=case.load,
-        power_W=st["power_W"],
-    )
+    summary = _engine_summary(st, load_N=case.load, power_W=st["power_W"])
     history = _history(
         {
             "time_s": res.t,
@@ -296,30 +300,14 @@ def _coupled(
         gravity=s.gravity,
         progress=progress,
     )
-    sm, se = res.summary, res.series
-    torque = sm["drive_torque_Nm"]
-    summary = _summary(
-        sinkage_m=sm["sinkage_m"],
-        drawbar_pull_N=sm["force_x_N"],
-        drive_torque_Nm=torque,
-        vertical_force_N=sm["force_z_N"],
-        slip=sm.get("slip"),
-        omega_rad_s=omega,
-        forward_velocity_m_s=sm["vx_m_s"],
-        load_N=case.load,
-        power_W=_power(torque, omega),
-    )
-    history = _history(
-        {
-            "time_s": se["time_s"],
-            "x_m": se["x_m"],
-            "sinkage_m": se["sinkage_m"],
-            "drawbar_pull_N": se["force_x_N"],
-            "vertical_force_N": se["force_z_N"],
-            "drive_torque_Nm": -se["torque_y_Nm"],
-            "forward_velocity_m_s": se["vx_m_s"],
-        }
-    )
+    renames = {
+        "drawbar_pull_N": "force_x_N",
+        "vertical_force_N": "force_z_N",
+        "forward_velocity_m_s": "vx_m_s",
+    }
+    summary = _engine_summary(res.summary, renames, omega_rad_s=omega, load_N=case.load)
+    series = dict(res.series, drive_torque_Nm=-res.series["torque_y_Nm"])
+    history = _history({k: series.get(renames.get(k, k)) for k in HISTORY_KEYS})
     name = str(getattr(terrain, "name", "user model"))
     return WheelRun(name, Engine.DYNAMICS, case, summary, history, {"dt_s": dt, **res.metadata}, res)
 
@@ -351,30 +339,9 @@ def run_mpm(case: WheelCase, s: MPMSettings, progress: Callable[[float, float], 
         **spin,
         **forward,
     )
-    sm, se = res.summary, res.series
-    summary = _summary(
-        sinkage_m=sm["sinkage_m"],
-        drawbar_pull_N=sm["drawbar_pull_N"],
-        drive_torque_Nm=sm["drive_torque_Nm"],
-        vertical_force_N=sm["force_z_N"],
-        slip=sm.get("slip"),
-        omega_rad_s=sm["omega_rad_s"],
-        forward_velocity_m_s=sm["forward_velocity_m_s"],
-        load_N=sm["load_N"],
-        power_W=_power(sm["drive_torque_Nm"], sm["omega_rad_s"]),
-    )
-    history = _history(
-        {
-            "time_s": se.get("time_s"),
-            "x_m": se.get("x_m"),
-            "sinkage_m": se.get("sinkage_m"),
-            "drawbar_pull_N": se.get("drawbar_pull_N"),
-            "vertical_force_N": se.get("force_z_N"),
-            "drive_torque_Nm": se.get("drive_torque_Nm"),
-            "omega_rad_s": se.get("omega_rad_s"),
-            "forward_velocity_m_s": se.get("vx_m_s"),
-        }
-    )
+    renames = {"vertical_force_N": "force_z_N", "forward_velocity_m_s": "vx_m_s"}
+    summary = _engine_summary(res.summary, {"vertical_force_N": "force_z_N"})
+    history = _history({k: res.series.get(renames.get(k, k)) for k in HISTORY_KEYS})
     return WheelRun("mpm", Engine.MPM, case, summary, history, dict(res.metadata), res)
 
 
@@ -424,17 +391,7 @@ def run_dem(case: WheelCase, s: DEMSettings, progress: Callable[[float, float], 
         resume=s.resume,
         progress=progress,
     )
-    sm, h = res.summary, res.history
-    summary = _summary(
-        sinkage_m=sm["sinkage_m"],
-        drawbar_pull_N=sm["drawbar_pull_N"],
-        drive_torque_Nm=sm["drive_torque_Nm"],
-        vertical_force_N=sm["vertical_force_N"],
-        slip=sm["slip"],
-        omega_rad_s=sm["omega_rad_s"],
-        forward_velocity_m_s=sm["forward_velocity_m_s"],
-        load_N=sm["load_N"],
-        power_W=_power(sm["drive_torque_Nm"], sm["omega_rad_s"]),
-    )
+    sm = res.summary
+    summary = _engine_summary(sm)
     meta = {"grain_count": sm.get("grain_count"), "bed": dict(res.bed), "duration_s": duration}
-    return WheelRun("dem", Engine.DEM, case, summary, _history(dict(h)), meta, res)
+    return WheelRun("dem", Engine.DEM, case, summary, _history(dict(res.history)), meta, res)

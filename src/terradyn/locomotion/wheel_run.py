@@ -1,6 +1,7 @@
 """One call for one wheel case through any model or engine: :func:`run_wheel` and :func:`compare_models`.
 
-The case, the settings and the result are in :mod:`terradyn.locomotion.wheel_case` (re-exported here);
+The case, the settings and the result are in :mod:`terradyn.locomotion.wheel_case` (exported by
+:mod:`terradyn.locomotion`);
 the engines' adapters in :mod:`terradyn.locomotion._wheel_engines`.
 """
 
@@ -13,11 +14,8 @@ from ..errors import InputError
 from ..models import ModelKind, model_entry
 from . import _wheel_engines as engines
 from .wheel_case import (
-    HISTORY_KEYS,
-    SUMMARY_KEYS,
     DEMSettings,
     Dynamics,
-    Engine,
     MPMSettings,
     QuasiStatic,
     Settings,
@@ -25,19 +23,7 @@ from .wheel_case import (
     WheelRun,
 )
 
-__all__ = [
-    "HISTORY_KEYS",
-    "SUMMARY_KEYS",
-    "DEMSettings",
-    "Dynamics",
-    "Engine",
-    "MPMSettings",
-    "QuasiStatic",
-    "WheelCase",
-    "WheelRun",
-    "compare_models",
-    "run_wheel",
-]
+__all__ = ["compare_models", "run_wheel"]
 
 
 def run_wheel(

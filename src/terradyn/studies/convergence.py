@@ -1,31 +1,9 @@
 """Grid convergence of MPM results: one case at three or more resolutions, the observed order and a
-Richardson estimate of the converged value with an error band (the estimates themselves are general
-numerics, :mod:`terradyn.numerics`, re-exported here).
+Richardson estimate of the converged value with an error band.
 
-The procedure is the one of Roache's grid convergence index as written up by Celik et al. (2008) for
-unequal refinement ratios: with the three finest resolutions h1 < h2 < h3 and results f1, f2, f3,
-the observed order p solves
-
-    p = | ln|e32 / e21| + q(p) | / ln r21,   q(p) = ln((r21^p - s) / (r32^p - s)),
-
-with e21 = f2 - f1, e32 = f3 - f2, r21 = h2/h1, r32 = h3/h2 and s = sign(e32/e21). The extrapolated
-value is f_ext = (r21^p f1 - f2) / (r21^p - 1) and the error band of the finest result is
-GCI = 1.25 |f1 - f2| / (r21^p - 1) (absolute, in the quantity's unit). Oscillating results (s < 0)
-or an order outside [0.2, 8] get no extrapolation: the band is then the spread of the three results.
-An observed order above the scheme's formal order (2: quadratic B-splines; Roache's advice) is not
-believed: the extrapolation and the band then use the formal order, which widens the band.
-
-Results that ring with resolution (a force that oscillates by a few per cent as body faces and node
-rows change their alignment) defeat a three-point estimate: one ringing reading flips the sign of a
-change. With four or more resolutions :func:`least_squares_limit` also fits ``f = f_0 + C h^p`` at the
-formal order p by least squares over all of them and reports f_0 with its standard error (the
-residual scatter, the ringing, enters the error instead of the order).
-
-References
-----------
-P. J. Roache, *Verification and Validation in Computational Science and Engineering* (1998).
-I. B. Celik et al., "Procedure for estimation and reporting of uncertainty due to discretization in CFD
-applications", J. Fluids Eng. 130, 078001 (2008), doi:10.1115/1.2960953.
+The estimates (Roache's grid convergence index for unequal refinement ratios, Celik et al. 2008, and a
+least-squares limit over four or more resolutions) are general numerics, :mod:`terradyn.numerics`,
+re-exported here; this module runs the MPM cases (intrusion, wheel, drag) at each cell size.
 """
 
 from __future__ import annotations
