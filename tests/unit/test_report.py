@@ -186,7 +186,7 @@ def test_wheel_c_is_b_without_lugs_and_both_run_in_the_wheel_rows(quick_report):
     """Table 6.2 lists all three wheels with sources; C's stand-in is B's outer cylinder, so the lugs are
     the only difference, and in RFT they add drawbar pull on every medium. The MPM row runs both."""
     from terradyn.errors import InputError
-    from terradyn.report.wheels_abc import WHEELS, wheel_body
+    from terradyn.studies.thesis_wheels import WHEELS, wheel_body
 
     _, run = quick_report
     (table,) = run.results[("tab-6-2", "theory")]["tables"].values()

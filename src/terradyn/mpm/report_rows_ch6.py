@@ -1,7 +1,7 @@
 """MPM rows of chapter 6 of the reproduction report (``terradyn reproduce``): wheel B in forced slip
 and the self-propelled flapped wheel.
 
-``ch6-wheels-bc``: wheels B and C of :mod:`terradyn.report.wheels_abc` (the 212 mm grousered wheel of
+``ch6-wheels-bc``: wheels B and C of :mod:`terradyn.studies.thesis_wheels` (the 212 mm grousered wheel of
 Agarwal et al. 2021, 15 lugs, and terradyn's stand-in for C, the same rim without lugs) under forced
 slip, MPM beside the RFT steady solve of the same wheel. MPM resolves B's physical lugs (18 mm x 4 mm,
 terradyn's assumption); RFT uses the effective lugs of :mod:`terradyn.studies.high_speed` (a third of
@@ -50,8 +50,8 @@ def wheels_bc_force_slip(quick: bool) -> ItemOutput:
     MPM against RFT, and what the lugs add in each."""
     from .. import materials
     from ..locomotion.steady import wheel_steady
-    from ..report.wheels_abc import WHEELS, wheel_body
     from ..studies.high_speed import HighSpeedWheel
+    from ..studies.thesis_wheels import WHEELS, wheel_body
     from .specs import Drive, Resolution
     from .wheel_runs import run_wheel
 

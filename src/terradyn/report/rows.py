@@ -154,7 +154,7 @@ def plate_depth(quick: bool) -> ItemOutput:
 
 # ------------------------------------------------------------------------------------------ chapter 6
 def wheels_table(quick: bool) -> ItemOutput:
-    from .wheels_abc import WHEELS
+    from ..studies.thesis_wheels import WHEELS
 
     rows = [
         {
@@ -254,7 +254,7 @@ def wheels_bc_force_slip(quick: bool) -> ItemOutput:
     from ..locomotion.models import ModelSpec
     from ..plotting import new_force_slip_figure, plot_force_slip
     from ..results import TableResult
-    from .wheels_abc import WHEELS, wheel_body
+    from ..studies.thesis_wheels import WHEELS, wheel_body
 
     spec_b, spec_c = WHEELS[1], WHEELS[2]
     slips = np.round(np.linspace(-0.5, 0.7, 4 if quick else 13), 10)
