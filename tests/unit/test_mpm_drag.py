@@ -11,8 +11,8 @@ from terradyn.errors import InputError
 from terradyn.geometry import Cylinder, Plate
 from terradyn.mpm.drag import drag_clearance, remove_grains_inside, run_drag
 from terradyn.mpm.model import resolve_model
-from terradyn.mpm.report_rows_ch9 import _LD_QUICK, _SIZE, _drag
 from terradyn.mpm.solver import BedGrid, make_bed
+from terradyn.report.rows.ch9_drag import _LD_QUICK, _SIZE, _drag
 
 CYLINDER = Cylinder(0.5 * _SIZE, _SIZE)
 

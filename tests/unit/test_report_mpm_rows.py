@@ -9,15 +9,15 @@ from terradyn.report import reproduce
 from terradyn.report.registry import item, rows_of
 
 MPM_ROWS = {
-    "ch9-plate-packing": "terradyn.mpm.report_rows:plate_packing",
-    "ch9-wedges": "terradyn.mpm.report_rows:wedges",
-    "fig-9-1": "terradyn.mpm.report_rows:footing",
-    "fig-6-8": "terradyn.mpm.report_rows:wheel_force_slip",
-    "fig-4-1": "terradyn.mpm.report_rows_ch48:alpha_map",
-    "ch4-plate-depth": "terradyn.mpm.report_rows_ch48:plate_depth",
-    "ch8-high-speed": "terradyn.mpm.report_rows_ch48:high_speed",
-    "ch6-wheels-bc": "terradyn.mpm.report_rows_ch6:wheels_bc_force_slip",
-    "ch6-flapped": "terradyn.mpm.report_rows_ch6:flapped_self_propelled",
+    "ch9-plate-packing": "terradyn.report.rows.ch9_intrusion:plate_packing_mpm",
+    "ch9-wedges": "terradyn.report.rows.ch9_intrusion:wedges_mpm",
+    "fig-9-1": "terradyn.report.rows.ch9_footing:footing_mpm",
+    "fig-6-8": "terradyn.report.rows.ch6:wheel_a_force_slip_mpm",
+    "fig-4-1": "terradyn.report.rows.ch4:alpha_map_mpm",
+    "ch4-plate-depth": "terradyn.report.rows.ch4:plate_depth_mpm",
+    "ch8-high-speed": "terradyn.report.rows.ch7_8:high_speed_mpm",
+    "ch6-wheels-bc": "terradyn.report.rows.ch6:wheels_bc_force_slip_mpm",
+    "ch6-flapped": "terradyn.report.rows.ch6:flapped_mpm",
 }
 
 
@@ -27,7 +27,7 @@ def test_mpm_rows_are_registered_not_pending():
 
 
 def test_flapped_speed_is_averaged_over_whole_flap_periods():
-    from terradyn.mpm.report_rows_ch6 import _flap_window
+    from terradyn.report.rows.ch6 import _flap_window
 
     period = 2 * math.pi / 4  # 4 flaps at 1 rad/s
     assert _flap_window(4.5, 4) == pytest.approx(period)  # 2.25 s of last half hold one period
@@ -39,7 +39,7 @@ def test_flapped_speed_is_averaged_over_whole_flap_periods():
 def test_the_alpha_map_names_its_edgewise_cases_and_the_shape_without_them():
     from terradyn.geometry import Plate
     from terradyn.mpm.bodies import body_segments, body_segments_world
-    from terradyn.mpm.report_rows_ch48 import _edgewise_findings
+    from terradyn.report.rows.ch4 import _edgewise_findings
 
     # angle = direction is motion along the plate: the MPM plate's long axis lies along (cos g, -sin g)
     g = math.radians(30.0)
@@ -92,8 +92,8 @@ def test_quick_wedge_row_builds_beside_rft(wedge_report):
 def test_a_wheel_row_names_the_runs_that_outgrew_their_bed():
     """The wheel rows turn each run's bed flags (heap at the bed's end, wheel close to the floor) into
     one finding naming the run, the way `terradyn mpm wheel` warns; runs that fit add nothing."""
-    from terradyn.mpm.report_rows import bed_outgrown_findings
     from terradyn.mpm.wheel_runs import FLOOR_CLEARANCE_REACHES, floor_metadata
+    from terradyn.report.rows.common import bed_outgrown_findings
 
     reach, depth = 0.1, 0.4
     fits = {"bed_depth_m": depth, **floor_metadata(np.array([0.0, 0.05, 0.09]), depth, reach)}

@@ -1,9 +1,10 @@
 """``terradyn reproduce``: the thesis items (chapters 3-9) run with every model that applies, written as
 one self-contained HTML report and as Markdown.
 
-:mod:`.registry` lists the thesis items and the rows (one model's computation for one item) that
-reproduce them; MPM and DEM rows plug in with :func:`register_row`. :func:`reproduce` runs the rows
-(cached per row, resumable, parallel) and writes the report.
+:mod:`.registry` lists the thesis items; :mod:`.rows` holds the rows (one model's computation for one
+item) by thesis chapter and the one table naming them; rows of your own plug in with
+:func:`register_row`. :func:`reproduce` runs the rows (cached per row, resumable, parallel) and writes
+the report.
 """
 
 from __future__ import annotations

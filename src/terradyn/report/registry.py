@@ -4,16 +4,16 @@ Every item names the thesis figure or table it stands beside (``label``; numbers
 checked against the thesis are written as the section, e.g. "Sec. 7 figure", never guessed), a
 caption, the terradyn study or function that reproduces it, and the models that apply. A *row* is
 one model's computation for one item: a module-level function ``row(quick) -> ItemOutput``.
-Rows for RFT, DRFT, Wong-Reece and the closed-form references ship here; MPM and DEM rows are
-plugged in with :func:`register_row` by the modules that provide them. A model listed for an item
-without a registered row shows as *pending* in the report; DEM rows are listed only when
-``terradyn.dem`` imports.
+The rows that ship live in :mod:`terradyn.report.rows` (one module per thesis chapter), named by the
+literal table :data:`terradyn.report.rows.ROWS`; a row's module is imported only when the row runs.
+Users plug in rows of their own with :func:`register_row` (consulted before the shipped table). A
+model listed for an item without a row shows as *pending* in the report; DEM rows are listed only when
+the DEM can run here (:func:`dem_available`).
 """
 
 from __future__ import annotations
 
 import importlib
-import importlib.util
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -158,7 +158,7 @@ ITEMS: tuple[ThesisItem, ...] = (
         6,
         "Table 6.2",
         "wheels A, B and C: the published specification and terradyn's closest documented wheels",
-        "terradyn.report.wheels_abc",
+        "terradyn.studies.thesis_wheels",
         ("theory",),
         (_AGARWAL_2019, _AGARWAL_2021),
     ),
@@ -177,7 +177,7 @@ ITEMS: tuple[ThesisItem, ...] = (
         6,
         "Sec. 6.1 figures (numbers not verified)",
         "force-slip of wheels B and C on the four media: RFT vs Wong-Reece (and MPM)",
-        "terradyn.report.wheels_abc",
+        "terradyn.studies.thesis_wheels",
         ("rft", "wong-reece", "mpm"),
         (_AGARWAL_2019,),
     ),
@@ -284,8 +284,9 @@ ITEMS: tuple[ThesisItem, ...] = (
 )
 
 RowFunction = Callable[[bool], ItemOutput]
-#: (item key, model) -> "module:function" of the row (strings keep work units picklable)
-_ROWS: dict[tuple[str, str], str] = {}
+#: rows plugged in by :func:`register_row`: (item key, model) -> "module:function" (strings keep work
+#: units picklable); consulted before the shipped table :data:`terradyn.report.rows.ROWS`
+_USER_ROWS: dict[tuple[str, str], str] = {}
 
 
 def item(key: str) -> ThesisItem:
@@ -299,14 +300,15 @@ def item(key: str) -> ThesisItem:
 def register_row(item_key: str, model: str, function: str) -> None:
     """Plug in a row: ``function`` is ``"package.module:name"`` of ``name(quick: bool) -> ItemOutput``.
 
-    Rows share their item's figure slot in the report; a row for a model the item does not list is
-    an error (add the model to the item first)."""
+    The row replaces the shipped one of (``item_key``, ``model``), if any; the module is imported only
+    when the row runs. Rows share their item's figure slot in the report; a row for a model the item
+    does not list is an error (add the model to the item first)."""
     it = item(item_key)
     if model not in it.models:
         raise InputError("model", model, f"one of the models of {item_key}: {list(it.models)}")
     if ":" not in function:
         raise InputError("function", function, "'package.module:function'")
-    _ROWS[(item_key, model)] = function
+    _USER_ROWS[(item_key, model)] = function
 
 
 def dem_available() -> bool:
@@ -322,69 +324,30 @@ def dem_available() -> bool:
     return True
 
 
+def _row_spec(key: str, model: str) -> str | None:
+    """The ``"module:function"`` (or ``"=model"``) of (item, model): a plugged-in row, else the shipped
+    one, else None (pending)."""
+    from .rows import ROWS
+
+    spec = _USER_ROWS.get((key, model))
+    return ROWS.get((key, model)) if spec is None else spec
+
+
 def rows_of(it: ThesisItem) -> list[tuple[str, str | None]]:
     """(model, row function or None when pending) for every model of ``it`` shown in the report."""
-    _load_rows()
     out: list[tuple[str, str | None]] = []
     for model in it.models:
         if model == "dem" and not dem_available():
             continue
-        out.append((model, _ROWS.get((it.key, model))))
+        out.append((model, _row_spec(it.key, model)))
     return out
 
 
 def row_for(key: str, model: str) -> RowFunction:
-    """The row function registered for (item, model)."""
-    _load_rows()
-    spec = _ROWS.get((key, model))
+    """The row function of (item, model), its module imported now."""
+    spec = _row_spec(key, model)
     if spec is None:
         raise InputError("row", f"{key}/{model}", "a registered row")
     module, name = spec.split(":")
     fn: RowFunction = getattr(importlib.import_module(module), name)
     return fn
-
-
-_LOADED = [False]
-
-
-def _load_rows() -> None:
-    """Register the rows that ship with terradyn (once), then those of optional modules."""
-    if _LOADED[0]:
-        return
-    _LOADED[0] = True
-    base = "terradyn.report.rows"
-    for key, model, name in (
-        ("ch3-pressure-sinkage", "bekker", "pressure_sinkage"),
-        ("fig-4-1", "rft", "alpha_map"),
-        ("ch4-plate-depth", "rft", "plate_depth"),
-        ("tab-6-1", "bekker", "material_audit"),
-        ("tab-6-2", "theory", "wheels_table"),
-        ("fig-6-8", "rft", "wheel_a_force_slip"),
-        ("ch6-wheels-bc", "rft", "wheels_bc_force_slip"),
-        ("ch6-flapped", "rft", "flapped"),
-        ("ch7-optimisation", "rft", "optimisation"),
-        ("ch8-high-speed", "drft", "high_speed"),
-        ("ch8-onset-criterion", "drft", "onset_criterion"),
-        ("fig-9-1", "theory", "slip_lines"),
-        ("ch9-wedges", "rft", "wedges"),
-        ("ch9-superposition", "rft", "superposition"),
-        ("ch9-lift-drag", "rft", "lift_drag"),
-    ):
-        _ROWS.setdefault((key, model), f"{base}:{name}")
-    # rows that one computation covers for two models (RFT and Wong-Reece share one sweep, RFT and
-    # DRFT one high-speed sweep) are registered under the first model; the others point to it
-    for key, model, first in (
-        ("ch3-pressure-sinkage", "rft", "bekker"),
-        ("tab-6-1", "rft", "bekker"),
-        ("fig-6-8", "wong-reece", "rft"),
-        ("ch6-wheels-bc", "wong-reece", "rft"),
-        ("ch8-high-speed", "rft", "drft"),
-    ):
-        _ROWS.setdefault((key, model), "=" + first)
-    # optional modules register their rows on import (e.g. terradyn.mpm.report_rows)
-    for module in ("terradyn.mpm.report_rows", "terradyn.dem.report_rows"):
-        try:
-            if importlib.util.find_spec(module) is not None:
-                importlib.import_module(module)
-        except ImportError:
-            continue

@@ -1,10 +1,13 @@
-"""MPM rows of chapter 9 of the thesis reproduction report: superposition, plowing, lift and drag, Fig. 9-9.
+"""Chapter 9 of the thesis reproduction report: bodies dragged through the grains.
 
-Registered with the report on import (``terradyn.mpm.report_rows`` imports this module). Each row is
-``name(quick) -> ItemOutput``; every number in a finding comes from the run. ``quick`` selects coarse
-cells (3-4 across the body), a doubled speed, a short travel and a small bed: a smoke form for the
-default test suite whose numbers are not converged. The full forms' settings are in ``_FULL_*``.
-The drag rows use :func:`terradyn.mpm.drag.run_drag` (the body is buried before the bed settles).
+``ch9-plowing``: a vertical plate dragged through loose and dense beds: MPM (dilatancy on) and DEM
+(:func:`terradyn.dem.drag.run_drag`): mean drag and the character of its fluctuations beside Gravish et
+al. (2010). ``ch9-lift-drag``: lift and drag of a cylinder, a square and half-cylinders versus depth:
+RFT, and MPM beside RFT. ``fig-9-9``: pressure, plastic shear rate and density around the MPM cylinder.
+Each row is ``name(quick) -> ItemOutput``; every number in a finding comes from the run. ``quick``
+selects coarse cells (3-4 across the body), a doubled speed, a short travel and a small bed (for DEM a
+few hundred grains): a smoke form whose numbers are not converged. The MPM drag rows use
+:func:`terradyn.mpm.drag.run_drag` (the body is buried before the bed settles).
 """
 
 from __future__ import annotations
@@ -12,56 +15,34 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
 
-from ..report.registry import Finding, ItemOutput, register_row
+from ..registry import Finding, ItemOutput
+from .common import (
+    DEM_QUICK_NOTE,
+    DILATANCY_K,
+    GRAVISH_TRANSITION,
+    MPM_MATERIAL,
+    PLOW_IMMERSED,
+    PLOW_LENGTH,
+    TRAVEL_QUICK_NOTE,
+    RunSetting,
+    fluctuations,
+    study,
+    verdict,
+)
 
-__all__ = ["cylinder_fields", "fluctuations", "lift_drag", "plowing", "superposition"]
-
-_MATERIAL = "MS"
-#: dilatancy constant of the plowing row, as the packing row (terradyn.mpm.report_rows._K): not
-#: calibrated to any medium (docs/mpm.md "Dilatancy")
-_K = 4.0
-#: packing fraction near which Gravish et al. (2010) see the drag change from smooth to fluctuating
-_GRAVISH_TRANSITION = 0.605
-
-
-@dataclass(frozen=True)
-class _Run:
-    """Resolution and travel of a row: cell size [m], speed [m/s], distance [m], fewest cells across,
-    bed length and depth [m] (None: the run's sizing rule), intrusion averaging window [m]."""
-
-    cell_size: float
-    speed: float
-    distance: float
-    min_cells: int
-    bed_width: float | None = None
-    bed_depth: float | None = None
-    window: float | None = None
-
-    def as_dict(self) -> dict[str, Any]:
-        return {
-            "cell_size_m": self.cell_size,
-            "speed_m_s": self.speed,
-            "distance_m": self.distance,
-            "min_cells_across": self.min_cells,
-            "bed_m": "sized by the run's rule"
-            if self.bed_width is None
-            else f"{self.bed_width:g} x {self.bed_depth:g} (smaller than the sizing rule)",
-        }
-
-
-_QUICK_NOTE = "quick form: coarse cells, doubled speed, short travel, small bed; not converged"
+__all__ = ["cylinder_fields_mpm", "lift_drag_mpm", "lift_drag_rft", "plowing_dem", "plowing_mpm"]
 
 
 @functools.lru_cache(maxsize=64)
 def _drag(
     body: Any,
     depth: float,
-    setting: _Run,
+    setting: RunSetting,
     sense: float = 1.0,
     angle: float = 0.0,
     packing: str = "consolidated",
@@ -69,12 +50,12 @@ def _drag(
     dilatancy: float = 0.0,
 ) -> tuple[dict[str, np.ndarray], dict[str, float], dict[str, np.ndarray], np.ndarray]:
     """One MPM drag in MS (cached in-process): series, summary, final particle fields, final outline."""
-    from .. import materials
-    from .drag import run_drag
-    from .model import resolve_model
-    from .specs import Bed, Resolution
+    from ... import materials
+    from ...mpm.drag import run_drag
+    from ...mpm.model import resolve_model
+    from ...mpm.specs import Bed, Resolution
 
-    mat = materials.get(_MATERIAL)
+    mat = materials.get(MPM_MATERIAL)
     density = None
     if density_ratio is not None:
         density = density_ratio * resolve_model(mat).critical_density
@@ -95,196 +76,36 @@ def _drag(
     return series, dict(res.summary), dict(res.final_particles), np.asarray(res.final_frame["segments"])
 
 
-# ------------------------------------------------------------------------- chapter 9: superposition
-#: quick: 20 mm plates at 6.67 mm cells (3 across), 0.1 m/s, gaps of 1 and 3 cells, a small bed;
-#: full: 3.33 mm cells (6 across), 0.05 m/s, gaps 1-16 cells, one bed for every run
-_SUP_QUICK = _Run(0.02 / 3, 0.1, 0.0, 3, bed_width=0.16, bed_depth=0.07, window=0.01)
-_SUP_FULL = _Run(0.02 / 6, 0.05, 0.0, 6, window=0.005)
-_SUP_GAPS_QUICK = (1.0, 3.0)  # cells
-_SUP_GAPS_FULL = (1.0, 2.0, 4.0, 8.0, 16.0)
-_PLATE = 0.02
-_SUP_DEPTH = 0.02
-
-
-def _superposition_bed(s: _Run, widest_gap: float) -> tuple[float, float]:
-    """One bed [m] for the single plate and every pair: the intrusion rule's clearance of one plate
-    (:func:`~terradyn.mpm.runs.mechanism_clearance`) beyond the widest pair, and below a strip as
-    wide as a touching pair."""
-    from .. import materials
-    from .model import resolve_model
-    from .runs import mechanism_clearance
-
-    if s.bed_width is not None and s.bed_depth is not None:
-        return s.bed_width, s.bed_depth
-    mu = resolve_model(materials.get(_MATERIAL)).friction_coefficient
-    side = max(mechanism_clearance(mu, _PLATE)[0], 2.5 * _SUP_DEPTH)
-    below = max(mechanism_clearance(mu, 2 * _PLATE)[1], 1.5 * _SUP_DEPTH)
-    return 2 * _PLATE + widest_gap + 2 * side, _SUP_DEPTH + 0.5 * (s.window or 0.0) + below
-
-
-@functools.lru_cache(maxsize=16)
-def _push(body: Any, s: _Run, bed_width: float, bed_depth: float) -> float:
-    """Vertical force [N] on ``body`` pushed down to the superposition depth (cached in-process)."""
-    from .. import materials
-    from .runs import run_intrusion
-    from .specs import Bed, Resolution, Stroke
-
-    res = run_intrusion(
-        body,
-        materials.get(_MATERIAL),
-        depth=_SUP_DEPTH,
-        speed=s.speed,
-        bed=Bed(width=bed_width, depth=bed_depth),
-        resolution=Resolution(cell_size=s.cell_size, min_cells_across=s.min_cells),
-        stroke=Stroke(averaging_window=s.window),
-    )
-    return float(res.summary["force_z_N"])
-
-
-def superposition(quick: bool) -> ItemOutput:
-    """Two 20 mm plates side by side pushed to 20 mm against twice one plate, versus their gap."""
-    import matplotlib.pyplot as plt
-
-    from .. import materials
-    from ..geometry import Composite, Plate
-    from ..studies.intrusion import intrusion_forces
-
-    s = _SUP_QUICK if quick else _SUP_FULL
-    gaps = [g * s.cell_size for g in (_SUP_GAPS_QUICK if quick else _SUP_GAPS_FULL)]
-    width = 0.01
-    bed_w, bed_d = _superposition_bed(s, max(gaps))
-    plate = Plate(_PLATE, width)
-    single = _push(plate, s, bed_w, bed_d)
-    mat = materials.get(_MATERIAL)
-    rft_single = float(intrusion_forces(plate, mat, [_SUP_DEPTH]).columns["force_z_N"][0])
-    rows = []
-    for gap in gaps:
-        half = 0.5 * (_PLATE + gap)
-        pair = Composite((plate.placed(x=-half), plate.placed(x=half)))
-        f = _push(pair, s, bed_w, bed_d)
-        rft_pair = float(intrusion_forces(pair, mat, [_SUP_DEPTH]).columns["force_z_N"][0])
-        rows.append(
-            {
-                "gap_m": gap,
-                "gap_over_plate": gap / _PLATE,
-                "pair_force_z_N": f,
-                "mpm_ratio": f / (2.0 * single),
-                "rft_ratio": rft_pair / (2.0 * rft_single),
-            }
-        )
-    fig, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
-    x = [r["gap_over_plate"] for r in rows]
-    ax.plot(x, [r["mpm_ratio"] for r in rows], "o-", label="MPM")
-    ax.plot(x, [r["rft_ratio"] for r in rows], "s--", label="RFT (no interaction)")
-    ax.axhline(1.0, color="0.6", lw=0.8, ls=":")
-    ax.set_xscale("log")
-    ax.set_xlabel("gap / plate length [-]")
-    ax.set_ylabel("F_pair / (2 F_single) [-]")
-    ax.set_title(
-        f"MPM, {_MATERIAL}: two 20 mm plates at {_SUP_DEPTH * 1e3:g} mm, {s.cell_size * 1e3:.3g} mm cells, "
-        f"{s.speed:g} m/s"
-    )
-    ax.grid(True, alpha=0.35)
-    ax.legend(fontsize=8)
-    out = ItemOutput(
-        figures={"superposition_mpm": fig},
-        settings={
-            "material": _MATERIAL,
-            "plate_m": _PLATE,
-            "depth_m": _SUP_DEPTH,
-            "gaps_m": gaps,
-            "bed_m": f"{bed_w:.3g} x {bed_d:.3g}, the same for every run",
-            **{k: v for k, v in s.as_dict().items() if k not in ("distance_m", "bed_m")},
-        },
-        metrics={"single_force_z_N": single, "rft_single_force_z_N": rft_single},
-        tables={"superposition": rows},
-    )
-    first, last = rows[0], rows[-1]
-    out.metrics.update(ratio_smallest_gap=first["mpm_ratio"], ratio_largest_gap=last["mpm_ratio"])
-    excess = [abs(r["mpm_ratio"] - 1.0) for r in rows]
-    k = int(np.argmax(excess))  # the strongest interaction
-    beyond = excess[k:]
-    decays = len(beyond) > 1 and all(b <= a + 0.02 for a, b in itertools.pairwise(beyond))
-    ratios = ", ".join(f"{r['mpm_ratio']:.3f}" for r in rows)
-    gaps_mm = ", ".join(f"{r['gap_m'] * 1e3:.3g}" for r in rows)
-    out.metrics.update(ratio_peak=rows[k]["mpm_ratio"], gap_of_peak_m=rows[k]["gap_m"])
-    out.findings.append(
-        Finding(
-            f"MPM F_pair / (2 F_single) = {ratios} at gaps of {gaps_mm} mm (single plate {single:.2f} N, "
-            f"{s.cell_size * 1e3:.3g} mm cells): the interaction is strongest, "
-            f"{rows[k]['mpm_ratio']:.3f}, at a gap of {rows[k]['gap_m'] / _PLATE:.2g} plate lengths and "
-            + (
-                f"decays beyond it toward the sum ({last['mpm_ratio']:.3f} at the widest gap; |ratio - 1| "
-                "grows by at most 0.02 from one gap to the next)"
-                if decays
-                else "does not decay steadily beyond it"
-            ),
-            "agrees" if decays else "disagrees",
-        )
-    )
-    dev = max(abs(r["rft_ratio"] - 1.0) for r in rows)
-    out.findings.append(
-        Finding(
-            f"RFT gives F_pair / (2 F_single) = 1 at every gap (largest deviation {dev:.1e}; single plate "
-            f"{rft_single:.2f} N): its elements do not interact, so linear superposition is exact",
-            "info",
-        )
-    )
-    if quick:
-        out.findings.append(Finding(_QUICK_NOTE, "info"))
-    return out
-
-
-# ------------------------------------------------------------------------- chapter 9: plowing
+# --------------------------------------------------------------------------------------------- plowing
 #: quick: 35 mm vertical plate at 6.25 mm cells, 0.1 m/s, 25 mm of travel, a small bed;
 #: full: 3.5 mm cells (10 across), 0.05 m/s, 60 mm of travel, the run's bed and window
-_PLOW_QUICK = _Run(0.00625, 0.1, 0.025, 3, bed_width=0.16, bed_depth=0.05)
-_PLOW_FULL = _Run(0.0035, 0.05, 0.06, 6)
+_PLOW_MPM_QUICK = RunSetting(0.00625, 0.1, 0.025, 3, bed_width=0.16, bed_depth=0.05)
+_PLOW_MPM_FULL = RunSetting(0.0035, 0.05, 0.06, 6)
 #: bed densities / critical density; with K > 0 a bed between 0.95 and 1 stays as loose as prepared
-_PLOW_PACKING_QUICK = ((0.97, _K), (1.03, _K))
-_PLOW_PACKING_FULL = ((0.97, _K), (0.99, _K), (1.01, _K), (1.03, _K), (0.97, 0.0), (1.03, 0.0))
-#: the plate: 35 mm long, 5 mm of it above the surface (30 mm immersed); its centre is at 12.5 mm
-_PLOW_LENGTH, _PLOW_IMMERSED = 0.035, 0.03
+_PLOW_PACKING_QUICK = ((0.97, DILATANCY_K), (1.03, DILATANCY_K))
+_PLOW_PACKING_FULL = (
+    (0.97, DILATANCY_K),
+    (0.99, DILATANCY_K),
+    (1.01, DILATANCY_K),
+    (1.03, DILATANCY_K),
+    (0.97, 0.0),
+    (1.03, 0.0),
+)
 
 
-def fluctuations(distance: np.ndarray, force: np.ndarray) -> dict[str, float]:
-    """Character of a force signal over travel: mean [N], std / mean [-] of the linearly detrended
-    signal, and the first peak of its autocorrelation after the first zero crossing: its lag [m]
-    (the period of a periodic signal) and height [-] (near 1: periodic; near 0 or none: irregular).
-    ``peak_lag_m`` is NaN-free: 0 with height 0 when there is no peak."""
-    d, f = np.asarray(distance, dtype=float), np.asarray(force, dtype=float)
-    mean = float(f.mean())
-    resid = f - np.polyval(np.polyfit(d, f, 1), d) if len(f) > 2 else f - mean
-    rel = float(resid.std() / abs(mean)) if mean != 0 else 0.0
-    lag, height = 0.0, 0.0
-    if len(resid) > 8 and resid.std() > 0:
-        r = resid - resid.mean()
-        # unbiased estimate: each lag's sum over its own number of pairs
-        ac = np.correlate(r, r, mode="full")[len(r) - 1 :] / (r @ r) * len(r) / np.arange(len(r), 0, -1)
-        neg = np.flatnonzero(ac < 0.0)
-        if len(neg):
-            tail = ac[neg[0] : len(ac) // 2]
-            if len(tail) > 2:
-                k = int(np.argmax(tail))
-                if 0 < k < len(tail) - 1:
-                    step = float(np.mean(np.diff(d)))
-                    lag, height = (neg[0] + k) * step, float(tail[k])
-    return {"mean_N": mean, "relative_std": rel, "peak_lag_m": lag, "peak_height": height}
-
-
-def plowing(quick: bool) -> ItemOutput:
+def plowing_mpm(quick: bool) -> ItemOutput:
     """A vertical plate dragged through loose and dense MS (dilatancy on): mean drag and fluctuations."""
     import matplotlib.pyplot as plt
 
-    from .. import materials
-    from ..geometry import Plate
-    from .model import resolve_model
+    from ... import materials
+    from ...geometry import Plate
+    from ...mpm.model import resolve_model
 
-    s = _PLOW_QUICK if quick else _PLOW_FULL
+    s = _PLOW_MPM_QUICK if quick else _PLOW_MPM_FULL
     cases = _PLOW_PACKING_QUICK if quick else _PLOW_PACKING_FULL
-    plate = Plate(_PLOW_LENGTH, 0.01)
-    centre = _PLOW_IMMERSED - 0.5 * _PLOW_LENGTH
-    model = resolve_model(materials.get(_MATERIAL))
+    plate = Plate(PLOW_LENGTH, 0.01)
+    centre = PLOW_IMMERSED - 0.5 * PLOW_LENGTH
+    model = resolve_model(materials.get(MPM_MATERIAL))
     rows = []
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), layout="constrained")
     for i, (ratio, k) in enumerate(cases):
@@ -322,37 +143,47 @@ def plowing(quick: bool) -> ItemOutput:
     phis = [r["packing_fraction"] for r in dil]
     axes[1].plot(phis, [r["drag_relative_std"] for r in dil], "o-", label="std / mean of drag (detrended)")
     axes[1].plot(phis, [r["autocorrelation_peak_height"] for r in dil], "s--", label="autocorrelation peak")
-    axes[1].axvline(_GRAVISH_TRANSITION, color="0.5", ls=":", label="Gravish et al. 2010 transition")
+    axes[1].axvline(GRAVISH_TRANSITION, color="0.5", ls=":", label="Gravish et al. 2010 transition")
     axes[1].axvline(model.critical_density / model.grain_density, color="C3", ls=":", label="MPM phi_c")
     axes[1].set_xlabel("packing fraction phi [-]")
     axes[1].set_ylabel("fluctuation measure [-]")
-    axes[1].set_title(f"steady window, dilatancy K = {_K:g}")
+    axes[1].set_title(f"steady window, dilatancy K = {DILATANCY_K:g}")
     for ax in axes:
         ax.grid(True, alpha=0.35)
         ax.legend(fontsize=8)
     fig.suptitle(
-        f"MPM plowing, {_MATERIAL}: vertical plate {_PLOW_IMMERSED * 1e3:g} mm deep, "
+        f"MPM plowing, {MPM_MATERIAL}: vertical plate {PLOW_IMMERSED * 1e3:g} mm deep, "
         f"{s.cell_size * 1e3:g} mm cells, {s.speed:g} m/s"
     )
     out = ItemOutput(
         figures={"plowing_mpm": fig},
         settings={
-            "material": _MATERIAL,
-            "plate_m": _PLOW_LENGTH,
-            "immersed_m": _PLOW_IMMERSED,
-            "dilatancy_K": _K,
+            "material": MPM_MATERIAL,
+            "plate_m": PLOW_LENGTH,
+            "immersed_m": PLOW_IMMERSED,
+            "dilatancy_K": DILATANCY_K,
             "packings": [list(c) for c in cases],
             **s.as_dict(),
         },
         tables={"plowing": rows},
     )
+    _plowing_findings(out, dil, s, model, quick)
+    return out
+
+
+def _plowing_findings(
+    out: ItemOutput, dil: list[dict[str, Any]], s: RunSetting, model: Any, quick: bool
+) -> None:
+    """The loosest and the densest dilatant bed: mean drag, the character of its fluctuations, and where
+    MPM's own transition sits."""
     loose, dense = dil[0], dil[-1]
     gain = dense["drag_mean_N"] / loose["drag_mean_N"]
     out.metrics.update(dense_over_loose_drag=gain)
     out.findings.append(
         Finding(
             f"mean drag {dense['drag_mean_N']:.2f} N at phi = {dense['packing_fraction']:.3f} against "
-            f"{loose['drag_mean_N']:.2f} N at {loose['packing_fraction']:.3f} ({gain:.2f}x, K = {_K:g}, "
+            f"{loose['drag_mean_N']:.2f} N at {loose['packing_fraction']:.3f} ({gain:.2f}x, "
+            f"K = {DILATANCY_K:g}, "
             f"{s.cell_size * 1e3:g} mm cells): the denser bed resists more",
             "agrees" if gain > 1.0 else "disagrees",
         )
@@ -380,23 +211,158 @@ def plowing(quick: bool) -> ItemOutput:
     out.findings.append(
         Finding(
             f"MPM's transition, if any, sits at its critical packing phi_c = "
-            f"{model.critical_density / model.grain_density:.3f} (rho_c / rho_s of {_MATERIAL}), where the "
+            f"{model.critical_density / model.grain_density:.3f} (rho_c / rho_s of {MPM_MATERIAL}), "
+            "where the "
             "dilatancy law changes sign; K is not calibrated to any medium and the local law's shear "
             "bands are a cell wide (docs/mpm.md), so band spacing and fluctuation period are not resolved "
-            "physics" + ("; " + _QUICK_NOTE if quick else ""),
+            "physics" + ("; " + TRAVEL_QUICK_NOTE if quick else ""),
             "info",
         )
     )
+
+
+@dataclass(frozen=True)
+class _Plow:
+    """Grain diameter [m], speed [m/s], travel [m] and bed seeds of the plowing row."""
+
+    grain_diameter: float
+    speed: float
+    distance: float
+    seeds: tuple[int, ...]
+
+
+#: quick: 5 mm grains (the plate seven grains long), 15 mm at 0.1 m/s, one bed each; full: 2 mm grains
+#: (15 grains immersed), 60 mm at 0.05 m/s (the MPM row's travel and speed), two beds each
+_PLOW_DEM_QUICK = _Plow(0.005, 0.1, 0.015, (1,))
+_PLOW_DEM_FULL = _Plow(0.002, 0.05, 0.06, (1, 2))
+
+
+def plowing_dem(quick: bool) -> ItemOutput:
+    """A vertical plate dragged through dense and loose DEM beds: drag and its fluctuations (ch. 9)."""
+    import matplotlib.pyplot as plt
+
+    from ... import materials
+    from ...dem.drag import run_drag
+    from ...geometry import Plate
+
+    s = _PLOW_DEM_QUICK if quick else _PLOW_DEM_FULL
+    mat = materials.get(MPM_MATERIAL)
+    plate = Plate(PLOW_LENGTH, 0.02)
+    centre = PLOW_IMMERSED - 0.5 * PLOW_LENGTH  # the MPM row's plate: 30 mm of 35 mm in the bed
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), layout="constrained")
+    rows: list[dict[str, Any]] = []
+    for k, packing in enumerate(("dense", "loose")):
+        for seed in s.seeds:
+            res = run_drag(plate, mat, depth=centre, distance=s.distance, speed=s.speed, angle=0.5 * math.pi,
+                           packing=packing, grain_diameter=s.grain_diameter, seed=seed)  # fmt: skip
+            h = res.history
+            late = h["travel_m"] >= s.distance - res.summary["averaging_window_m"] - 1e-12
+            fl = fluctuations(h["travel_m"][late], h["drag_N"][late])
+            rows.append({
+                "packing": packing, "seed": seed, "packing_fraction": float(res.bed["packing_fraction"]),
+                "grain_count": int(res.summary["grain_count"]), "drag_mean_N": res.summary["drag_N"],
+                "lift_mean_N": res.summary["lift_N"], "drag_relative_std": fl["relative_std"],
+                "autocorrelation_peak_lag_m": fl["peak_lag_m"],
+                "autocorrelation_peak_height": fl["peak_height"],
+            })  # fmt: skip
+            label = f"{packing}, seed {seed} (packing fraction {rows[-1]['packing_fraction']:.3f})"
+            axes[0].plot(h["travel_m"] * 1e3, h["drag_N"], "-", color=f"C{k}", lw=0.9, label=label)
+    by = {p: [r for r in rows if r["packing"] == p] for p in ("dense", "loose")}
+    for k, (p, sel) in enumerate(by.items()):
+        phis = [r["packing_fraction"] for r in sel]
+        axes[1].plot(phis, [r["drag_relative_std"] for r in sel], "o", color=f"C{k}",
+                     label=f"{p}: std / mean of the detrended drag")  # fmt: skip
+        axes[1].plot(phis, [r["autocorrelation_peak_height"] for r in sel], "s", mfc="none", color=f"C{k}",
+                     label=f"{p}: autocorrelation peak")  # fmt: skip
+    axes[1].axvline(GRAVISH_TRANSITION, color="0.5", ls=":", label="Gravish et al. 2010 transition")
+    axes[0].set_xlabel("travel [mm]")
+    axes[0].set_ylabel("drag on the plate [N]")
+    axes[1].set_xlabel("packing fraction of the bed [-]")
+    axes[1].set_ylabel("fluctuation measure over the last half [-]")
+    for ax in axes:
+        ax.grid(True, alpha=0.35)
+        ax.legend(fontsize=7)
+    fig.suptitle(f"DEM plowing, {mat.name} grains of {s.grain_diameter * 1e3:g} mm: vertical plate "
+                 f"{PLOW_IMMERSED * 1e3:g} mm deep at {s.speed:g} m/s, dense and loose beds")  # fmt: skip
+    out = ItemOutput(figures={"plowing_dem": fig},
+                     settings={**asdict(s), "material": mat.name, "plate_m": PLOW_LENGTH,
+                               "immersed_m": PLOW_IMMERSED}, tables={"plowing": rows})  # fmt: skip
+    mean = {p: float(np.mean([r["drag_mean_N"] for r in sel])) for p, sel in by.items()}
+    rel = {p: float(np.mean([r["drag_relative_std"] for r in sel])) for p, sel in by.items()}
+    peak = {p: float(np.mean([r["autocorrelation_peak_height"] for r in sel])) for p, sel in by.items()}
+    phi = {p: float(np.mean([r["packing_fraction"] for r in sel])) for p, sel in by.items()}
+    gain = mean["dense"] / mean["loose"]
+    out.metrics.update(
+        dense_over_loose_drag=gain, relative_std_dense=rel["dense"], relative_std_loose=rel["loose"]
+    )
+    separated = min(r["drag_mean_N"] for r in by["dense"]) > max(r["drag_mean_N"] for r in by["loose"])
+    out.findings.append(
+        Finding(
+            f"mean drag over the last half: dense {mean['dense']:.3f} N at packing fraction "
+            f"{phi['dense']:.3f}, loose {mean['loose']:.3f} N at {phi['loose']:.3f} ({gain:.2f}x); "
+            + ("every dense bed resists more than every loose one" if separated else
+               "the dense and loose beds overlap"),
+            "info" if quick else ("agrees" if separated else "disagrees"),
+        )
+    )  # fmt: skip
+    # across beds, not on means: every dense bed must fluctuate more, and more periodically, than
+    # every loose one
+    larger = min(r["drag_relative_std"] for r in by["dense"]) > max(
+        r["drag_relative_std"] for r in by["loose"]
+    )
+    periodic = min(r["autocorrelation_peak_height"] for r in by["dense"]) > max(
+        r["autocorrelation_peak_height"] for r in by["loose"]
+    )
+    out.findings.append(
+        Finding(
+            f"fluctuations: std / mean of the detrended drag {rel['loose']:.3f} (loose) and "
+            f"{rel['dense']:.3f} (dense); autocorrelation peak {peak['loose']:.2f} / {peak['dense']:.2f} "
+            "(means over the beds). Gravish et al. 2010 see smooth drag below a packing fraction of about "
+            "0.605 and periodic fluctuations above it; every dense bed "
+            + ("fluctuates more" if larger else "does NOT fluctuate more")
+            + " and "
+            + ("more periodically" if periodic else "NOT more periodically")
+            + " than every loose one",
+            "info" if quick else ("agrees" if larger and periodic else "disagrees"),
+        )
+    )
+    if quick:
+        out.findings.append(Finding(DEM_QUICK_NOTE, "info"))
     return out
 
 
-# ------------------------------------------------------------------------- chapter 9: lift and drag
+# -------------------------------------------------------------------------------------- lift and drag
+def lift_drag_rft(quick: bool) -> ItemOutput:
+    res = study("lift-drag", quick)
+    out = ItemOutput(figures=res.figures, settings={"material": "MS", "size_m": 0.0254})
+    for row in res.summary:
+        out.metrics[f"{row['body']}_lift_over_drag"] = row["lift_at_max_depth_N"] / row["drag_at_max_depth_N"]
+    for body in ("cylinder", "square"):
+        r = out.metrics[f"{body}_lift_over_drag"]
+        out.findings.append(
+            Finding(
+                f"{body}: lift / drag = {r:+.2f} at the deepest point (Ding et al. 2011: upward lift)",
+                verdict(r > 0),
+            )
+        )
+    for body in ("half-cylinder-flat-up", "half-cylinder-flat-down"):
+        r = out.metrics[f"{body}_lift_over_drag"]
+        out.findings.append(
+            Finding(
+                f"{body}: lift / drag = {r:+.2f}; Ding et al. 2011 report downward lift "
+                "on the half-cylinder, which RFT's generic law cannot give",
+                verdict(r < 0),
+            )
+        )
+    return out
+
+
 #: quick: 25.4 mm bodies at 6.35 mm cells (4 across), 0.1 m/s, one diameter of travel, a small bed,
 #: the cylinder at two depths and the half-cylinders at the deeper; full: 3.175 mm cells (8 across),
 #: 0.05 m/s, 1.5 diameters of travel, the run's bed and window, every body at 1, 2, 3 diameters
 _SIZE = 0.0254
-_LD_QUICK = _Run(_SIZE / 4, 0.1, _SIZE, 3, bed_width=0.16, bed_depth=0.07)
-_LD_FULL = _Run(_SIZE / 8, 0.05, 1.5 * _SIZE, 6)
+_LD_QUICK = RunSetting(_SIZE / 4, 0.1, _SIZE, 3, bed_width=0.16, bed_depth=0.07)
+_LD_FULL = RunSetting(_SIZE / 8, 0.05, 1.5 * _SIZE, 6)
 _LD_DEPTHS_QUICK = {
     "cylinder": (0.5, 1.0),
     "half-cylinder-flat-up": (1.0,),
@@ -408,7 +374,7 @@ _LD_DEPTHS_FULL = dict.fromkeys(
 
 
 def _lift_drag_bodies() -> dict[str, Any]:
-    from ..geometry import Cylinder, HalfCylinder
+    from ...geometry import Cylinder, HalfCylinder
 
     r = 0.5 * _SIZE
     return {
@@ -438,17 +404,17 @@ def _lift_drag_runs(quick: bool) -> list[dict[str, Any]]:
     return rows
 
 
-def lift_drag(quick: bool) -> ItemOutput:
+def lift_drag_mpm(quick: bool) -> ItemOutput:
     """Cylinder and half-cylinders (flat side up and down) dragged at several depths: MPM beside RFT."""
     import matplotlib.pyplot as plt
 
-    from .. import materials
-    from ..studies.intrusion import lift_drag as rft_lift_drag
+    from ... import materials
+    from ...studies.intrusion import lift_drag as rft_lift_drag
 
     s = _LD_QUICK if quick else _LD_FULL
     rows = _lift_drag_runs(quick)
     depths = sorted({r["depth_m"] for r in rows})
-    rft = rft_lift_drag(materials.get(_MATERIAL), depths, size=_SIZE, width=_SIZE).columns
+    rft = rft_lift_drag(materials.get(MPM_MATERIAL), depths, size=_SIZE, width=_SIZE).columns
     for r in rows:
         m = (rft["body"] == r["body"]) & np.isclose(rft["depth_m"], r["depth_m"])
         r["rft_drag_N"], r["rft_lift_N"] = float(rft["drag_N"][m][0]), float(rft["lift_N"][m][0])
@@ -470,13 +436,13 @@ def lift_drag(quick: bool) -> ItemOutput:
         ax.legend(fontsize=7)
     axes[2].set_title("RFT forces are in the table (MS is weaker in MPM)", fontsize=9)
     fig.suptitle(
-        f"MPM and RFT, {_MATERIAL}: 25.4 mm bodies dragged along +x, {s.cell_size * 1e3:.3g} mm cells, "
+        f"MPM and RFT, {MPM_MATERIAL}: 25.4 mm bodies dragged along +x, {s.cell_size * 1e3:.3g} mm cells, "
         f"{s.speed:g} m/s"
     )
     out = ItemOutput(
         figures={"lift_drag_mpm": fig},
         settings={
-            "material": _MATERIAL,
+            "material": MPM_MATERIAL,
             "size_m": _SIZE,
             "depths_in_diameters": {
                 k: list(v) for k, v in (_LD_DEPTHS_QUICK if quick else _LD_DEPTHS_FULL).items()
@@ -522,20 +488,20 @@ def lift_drag(quick: bool) -> ItemOutput:
     out.findings.append(
         Finding(
             "MS as shipped is weaker in MPM than its RFT medium (docs/mpm.md), so compare signs and ratios, "
-            "not magnitudes" + ("; " + _QUICK_NOTE if quick else ""),
+            "not magnitudes" + ("; " + TRAVEL_QUICK_NOTE if quick else ""),
             "info",
         )
     )
     return out
 
 
-# ------------------------------------------------------------------------- Fig. 9-9
-def cylinder_fields(quick: bool) -> ItemOutput:
+# ----------------------------------------------------------------------------------------------- Fig. 9-9
+def cylinder_fields_mpm(quick: bool) -> ItemOutput:
     """Pressure, plastic shear rate and density around the cylinder of the lift-drag row at its deepest
     depth, at the end of the drag (Fig. 9-9)."""
-    from .. import materials
-    from ..plotting.mpm import plot_fields
-    from .model import resolve_model
+    from ... import materials
+    from ...mpm.model import resolve_model
+    from ...plotting.mpm import plot_fields
 
     s = _LD_QUICK if quick else _LD_FULL
     depth = max(_LD_DEPTHS_QUICK["cylinder"] if quick else _LD_DEPTHS_FULL["cylinder"]) * _SIZE
@@ -549,13 +515,13 @@ def cylinder_fields(quick: bool) -> ItemOutput:
         segments=segments,
         quantities=("pressure", "plastic_shear_rate", "density"),
         title=(
-            f"MPM, {_MATERIAL}: 25.4 mm cylinder dragged along +x at {depth * 1e3:.3g} mm,\n"
+            f"MPM, {MPM_MATERIAL}: 25.4 mm cylinder dragged along +x at {depth * 1e3:.3g} mm,\n"
             f"end of {s.distance * 1e3:.3g} mm of travel, {s.cell_size * 1e3:.3g} mm cells "
             "(packing fraction = density / grain density)"
         ),
         window=window,
     )
-    model = resolve_model(materials.get(_MATERIAL))
+    model = resolve_model(materials.get(MPM_MATERIAL))
     x, z = np.asarray(fields["x"]), np.asarray(fields["z"])
     near = np.hypot(x - x_end, z + depth) < 2.0 * r
     ahead, behind = near & (x > x_end), near & (x < x_end)
@@ -571,7 +537,7 @@ def cylinder_fields(quick: bool) -> ItemOutput:
     }
     out = ItemOutput(
         figures={"fig_9_9_fields": fig},
-        settings={"material": _MATERIAL, "size_m": _SIZE, "depth_m": depth, **s.as_dict()},
+        settings={"material": MPM_MATERIAL, "size_m": _SIZE, "depth_m": depth, **s.as_dict()},
         metrics=metrics,
     )
     out.findings.append(
@@ -591,14 +557,8 @@ def cylinder_fields(quick: bool) -> ItemOutput:
         Finding(
             "Ding et al. 2011 show the stress and flow fields around the dragged cylinder in experiment and "
             "DEM; this figure is MPM's counterpart, not compared quantitatively"
-            + ("; " + _QUICK_NOTE if quick else ""),
+            + ("; " + TRAVEL_QUICK_NOTE if quick else ""),
             "info",
         )
     )
     return out
-
-
-register_row("ch9-superposition", "mpm", "terradyn.mpm.report_rows_ch9:superposition")
-register_row("ch9-plowing", "mpm", "terradyn.mpm.report_rows_ch9:plowing")
-register_row("ch9-lift-drag", "mpm", "terradyn.mpm.report_rows_ch9:lift_drag")
-register_row("fig-9-9", "mpm", "terradyn.mpm.report_rows_ch9:cylinder_fields")

@@ -77,7 +77,7 @@ def wheel_body(name: str) -> Any:
     """The terradyn body of wheel ``name`` (A, B or C; C is the smooth stand-in of the module doc)."""
     from ..errors import InputError
     from ..geometry import WheelCircular
-    from ..studies.high_speed import HighSpeedWheel
+    from .high_speed import HighSpeedWheel
 
     if name == "A":
         return WheelCircular(0.13, 0.16)

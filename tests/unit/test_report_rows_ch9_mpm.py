@@ -6,21 +6,21 @@ import math
 import numpy as np
 import pytest
 
-from terradyn.mpm.report_rows_ch9 import fluctuations
 from terradyn.report import reproduce
 from terradyn.report.registry import item, rows_of
+from terradyn.report.rows.common import fluctuations
 
 ROWS = {
-    "ch9-superposition": ("superposition", "superposition_mpm"),
-    "ch9-plowing": ("plowing", "plowing_mpm"),
-    "ch9-lift-drag": ("lift_drag", "lift_drag_mpm"),
-    "fig-9-9": ("cylinder_fields", "fig_9_9_fields"),
+    "ch9-superposition": ("ch9_intrusion:superposition_mpm", "superposition_mpm"),
+    "ch9-plowing": ("ch9_drag:plowing_mpm", "plowing_mpm"),
+    "ch9-lift-drag": ("ch9_drag:lift_drag_mpm", "lift_drag_mpm"),
+    "fig-9-9": ("ch9_drag:cylinder_fields_mpm", "fig_9_9_fields"),
 }
 
 
 def test_rows_are_registered():
     for key, (name, _) in ROWS.items():
-        assert dict(rows_of(item(key)))["mpm"] == f"terradyn.mpm.report_rows_ch9:{name}"
+        assert dict(rows_of(item(key)))["mpm"] == f"terradyn.report.rows.{name}"
 
 
 def test_fluctuations_tell_a_periodic_signal_from_noise():
