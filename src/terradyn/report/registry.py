@@ -15,10 +15,10 @@ from __future__ import annotations
 
 import importlib
 from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass
 
 from ..errors import InputError
+from .outputs import Finding, ItemOutput
 
 __all__ = [
     "CHAPTERS",
@@ -48,32 +48,6 @@ _CHAPTER_TITLES = {
 def chapter_title(chapter: int) -> str:
     """Title the report gives a thesis chapter."""
     return _CHAPTER_TITLES[chapter]
-
-
-@dataclass(frozen=True)
-class Finding:
-    """One line of "what agrees / what does not", its numbers computed by the run.
-
-    ``verdict`` is ``agrees``, ``disagrees`` or ``info`` (a measured fact with no reference)."""
-
-    text: str
-    verdict: str = "info"
-
-    def __post_init__(self) -> None:
-        if self.verdict not in ("agrees", "disagrees", "info"):
-            raise InputError("finding.verdict", self.verdict, "agrees, disagrees or info")
-
-
-@dataclass
-class ItemOutput:
-    """What a row returns: figures (name -> matplotlib figure), settings, metrics, findings and
-    optional small tables (name -> list of row dicts)."""
-
-    figures: dict[str, Any] = field(default_factory=dict)
-    settings: dict[str, Any] = field(default_factory=dict)
-    metrics: dict[str, Any] = field(default_factory=dict)
-    findings: list[Finding] = field(default_factory=list)
-    tables: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)

@@ -26,7 +26,7 @@ from ..rft import li2013_alpha_material
 from ._base import StudyEntry, StudyOutput, _Params
 from .mpm_compare import _rft_on_body, alpha_scale_and_shape, style_alpha_axes
 
-__all__ = ["dem_alpha_map", "dem_plate_body", "window_alpha"]
+__all__ = ["dem_alpha_map", "dem_plate_body", "run_dem_alpha", "window_alpha"]
 
 
 def dem_plate_body(length: float, width: float, grain_diameter: float) -> Plate:
@@ -216,7 +216,8 @@ def _figure(t: TableResult, p: DEMAlphaParams, angles: Sequence[float], mpm: Any
     return fig
 
 
-def _run_alpha(p: DEMAlphaParams) -> StudyOutput:
+def run_dem_alpha(p: DEMAlphaParams) -> StudyOutput:
+    """The ``dem-alpha`` study: the plate's alpha map in DEM beside RFT (and an MPM table if given)."""
     mpm = _read_mpm(p.mpm_csv)
     angles = p.angles_deg[:1] if p.quick else p.angles_deg
     dirs = [90.0] if p.quick else p.directions_deg
@@ -262,4 +263,4 @@ def _run_alpha(p: DEMAlphaParams) -> StudyOutput:
 
 def study_entries() -> tuple[StudyEntry, ...]:
     """The studies this module provides (:mod:`terradyn.studies.registry` lists them)."""
-    return (("dem-alpha", DEMAlphaParams, _run_alpha, "plate alpha over angle and direction: DEM vs RFT"),)
+    return (("dem-alpha", DEMAlphaParams, run_dem_alpha, "plate alpha over angle and direction: DEM vs RFT"),)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ... import materials
-from ..registry import Finding, ItemOutput
+from ..outputs import Finding, ItemOutput
 from .common import MEDIA, verdict
 
 __all__ = ["pressure_sinkage_bekker"]

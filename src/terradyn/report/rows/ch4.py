@@ -15,7 +15,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ... import materials
-from ..registry import Finding, ItemOutput
+from ..outputs import Finding, ItemOutput
 from .common import DEM_QUICK_NOTE, STROKE_QUICK_NOTE, IntrusionSetting, intrude, study, verdict
 
 __all__ = [
@@ -266,10 +266,10 @@ def plate_depth_mpm(quick: bool) -> ItemOutput:
 # ---------------------------------------------------------------------------------------- DEM
 def alpha_map_dem(quick: bool) -> ItemOutput:
     """alpha_x, alpha_z of a plate over angle and direction in DEM (study ``dem-alpha``) against RFT."""
-    from ...studies.dem_compare import DEMAlphaParams, _run_alpha
+    from ...studies.dem_compare import DEMAlphaParams, run_dem_alpha
 
     p = DEMAlphaParams.model_validate({"quick": quick})
-    res = _run_alpha(p)
+    res = run_dem_alpha(p)
     (summary,) = res.summary
     table = res.tables["dem_alpha"]
     out = ItemOutput(

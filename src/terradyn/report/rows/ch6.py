@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from ... import materials
-from ..registry import Finding, ItemOutput
+from ..outputs import Finding, ItemOutput
 from .common import MEDIA, MPM_MATERIAL, bed_outgrown_findings, force_slip_axes, study, verdict
 
 __all__ = [

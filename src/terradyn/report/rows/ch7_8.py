@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..registry import Finding, ItemOutput
+from ..outputs import Finding, ItemOutput
 from .common import bed_outgrown_findings, verdict
 
 __all__ = ["high_speed_drft", "high_speed_mpm", "onset_criterion_drft", "optimisation_rft"]

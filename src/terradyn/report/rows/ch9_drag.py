@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ..registry import Finding, ItemOutput
+from ..outputs import Finding, ItemOutput
 from .common import (
     DEM_QUICK_NOTE,
     DILATANCY_K,

@@ -12,7 +12,7 @@ import functools
 import math
 from typing import Any
 
-from ..registry import Finding, ItemOutput
+from ..outputs import Finding, ItemOutput
 from .common import MPM_MATERIAL, verdict
 
 __all__ = ["footing_mpm", "slip_lines_theory"]

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..registry import Finding
+from ..outputs import Finding
 
 __all__ = [
     "DEM_QUICK_NOTE",
