@@ -7,7 +7,9 @@ import math
 import numpy as np
 import pytest
 
+from terradyn import materials
 from terradyn.errors import InputError
+from terradyn.mpm import FootingBase, FootingPush, NodeFootingCase, Resolution, run_node_footing
 from terradyn.studies.mpm_footing_nodes import (
     PLATEAU_DRIFT,
     PLATEAU_PEAK_RATIO,
@@ -291,3 +293,40 @@ def test_local_damping_does_not_stop_pure_flips_creep():
     assert damped[0].record()["local_damping"] == 0.8 and bare.local_damping == 0.0
     with pytest.raises(InputError, match="local_damping"):
         node_strip_footing(34.0, "smooth", speed=0.01, local_damping=1.0, **kw)
+
+
+@pytest.mark.parametrize(
+    ("make", "field"),
+    [
+        (lambda: NodeFootingCase(base="sticky"), "base"),
+        (lambda: NodeFootingCase(width=-0.04), "width"),
+        (lambda: NodeFootingCase(domain_widths=(0.5, 1.0)), "domain_widths"),
+        (lambda: NodeFootingCase(domain_widths=(4.0,)), "domain_widths"),
+        (lambda: NodeFootingCase(base_rows=0), "base_rows"),
+        (lambda: NodeFootingCase(symmetric="yes"), "symmetric"),
+        (lambda: FootingPush(speed=0.0), "speed"),
+        (lambda: FootingPush(settlement_ratio=0.5), "settlement_ratio"),
+        (lambda: FootingPush(hold_time=-1.0), "hold_time"),
+        (lambda: run_node_footing(materials.get("MS"), resolution=Resolution(cell_size=0.003)), "cell_size"),
+        (lambda: run_node_footing(materials.get("MS"), local_damping=1.0), "local_damping"),
+        (lambda: run_node_footing("MS"), "material"),
+    ],
+)
+def test_the_public_footing_specs_name_the_bad_field(make, field):
+    with pytest.raises(InputError) as err:
+        make()
+    assert err.value.field == field
+
+
+def test_the_public_node_footing_run_loads_the_half_footing_from_rest_and_holds():
+    """terradyn.mpm.run_node_footing, which the study reads: B/4 cells, symmetric, held after the push."""
+    case = NodeFootingCase(base=FootingBase.ROUGH, domain_widths=(2.0, 1.0))
+    run = run_node_footing(materials.get("MS"), case, resolution=Resolution(cell_size=0.01),
+                           push=FootingPush(hold_time=0.01))  # fmt: skip
+    assert case.base is FootingBase.ROUGH and run.loaded_width_m == pytest.approx(0.02)
+    assert run.settlement_m[-1] == pytest.approx(0.02 * case.width, rel=0.02)
+    assert np.all(np.diff(run.settlement_m) > 0.0)
+    assert abs(run.pressure_Pa[0]) < 0.1 * run.pressure_Pa[-1]  # the ramp starts from rest
+    assert run.held_time_s[-1] == pytest.approx(0.01, rel=0.05)
+    assert len(run.held_pressure_Pa) == len(run.held_time_s)
+    assert run.steps > 0 and run.particles > 0 and run.push_time_s > 0.0

@@ -4,7 +4,8 @@ The Dunatunga-Kamrin (2015) granular model (hypoelastic Jaumann trial stress, Dr
 optional mu(I) rate dependence, stress-free below the critical density) on an explicit MPM grid
 (APIC transfer, quadratic B-splines) with rigid bodies in frictional contact. Entry points:
 :func:`run_intrusion`, :func:`run_wheel` and :func:`run_drag` (a buried body dragged
-horizontally), and :class:`MPMTerrain`, the stateful terrain model
+horizontally), :func:`run_node_footing` (a strip footing whose base is a grid condition, the
+continuum without the contact), and :class:`MPMTerrain`, the stateful terrain model
 (``init``/``step``) for driving a body from your own code; :class:`GranularModel` maps a material
 (mu = sin(phi)). Their settings come as frozen specs shared by every case (:mod:`terradyn.mpm.specs`):
 :class:`Bed`, :class:`Resolution`, :class:`Outputs`, and the run length, :class:`Stroke` (intrusions)
@@ -36,10 +37,14 @@ __all__ = [
     "BedPacking",
     "DragResult",
     "Drive",
+    "FootingBase",
+    "FootingPush",
     "GranularModel",
     "IntrusionResult",
     "MPMInstabilityError",
     "MPMTerrain",
+    "NodeFootingCase",
+    "NodeFootingRun",
     "Outputs",
     "Resolution",
     "Stroke",
@@ -52,6 +57,7 @@ __all__ = [
     "read_snapshot",
     "run_drag",
     "run_intrusion",
+    "run_node_footing",
     "run_wheel",
 ]
 
@@ -78,6 +84,11 @@ _WHERE = {
     "DragResult": "drag",
     "run_drag": "drag",
     "read_snapshot": "checkpoint",
+    "FootingBase": "footing",
+    "FootingPush": "footing",
+    "NodeFootingCase": "footing",
+    "NodeFootingRun": "footing",
+    "run_node_footing": "footing",
 }
 
 

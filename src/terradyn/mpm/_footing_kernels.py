@@ -1,10 +1,13 @@
 """Numba loop of the MPM strip footing with its base as a grid boundary condition (no contact body).
 
-Used by :func:`terradyn.studies.mpm_footing_nodes.node_strip_footing`. The step is the MPM step of
-:func:`terradyn.mpm._kernels.advance` without a body (p2g, grid update with the walls, optional
-patch-averaged divergence, g2p); after the grid update the footing nodes take the footing's velocity
-and a symmetry plane at the left wall, if asked for, takes ``v_x = 0`` on both sides. Conventions
-(units, shapes, grid origin) as in :mod:`terradyn.mpm._kernels`.
+Launched by :func:`terradyn.mpm.footing.run_node_footing`. The step is the MPM step of
+:func:`terradyn.mpm._kernels.advance` without a body: the same shared phases
+(:func:`~terradyn.mpm._kernels.step_to_grid`, :func:`~terradyn.mpm._kernels.grid_update`,
+:func:`~terradyn.mpm._kernels.step_to_particles`), with the footing's own grid conditions after the
+grid update: the floor of a grid that follows the footing, the local damping if asked for, a
+symmetry plane at the left wall (``v_x = 0`` on both sides), if asked for, and the footing nodes,
+which take the footing's velocity. Conventions (units, shapes, grid origin) as in
+:mod:`terradyn.mpm._kernels`.
 """
 
 from __future__ import annotations
@@ -15,16 +18,14 @@ from numba import njit
 from ._common_kernels import _MASS_EPS
 from ._kernels import (
     chunk_sum,
-    flip_blend,
     flip_scratch,
-    g2p,
-    grid_change,
     grid_update,
-    p2g,
-    patch_divergence,
+    patch_scratch,
+    step_to_grid,
+    step_to_particles,
 )
 
-__all__: list[str] = []
+__all__ = ["advance_footing", "footing_nodes", "local_damp"]
 
 
 @njit(cache=True)
@@ -86,22 +87,19 @@ def advance_footing(
     the interpolated grid velocity (0: the APIC update of the solver; positions and affine matrices
     always from the new grid velocity). Used to measure the transfer's numerical dissipation.
     ``local_damping`` alpha in [0, 1): the local damping of quasi-static explicit codes
-    (:func:`local_damp`) at the free nodes; 0 leaves the step unchanged.
+    (:func:`local_damp`) at the free nodes; 0 leaves the step unchanged. ``scratch_grid`` and
+    ``geo`` as ``scratch_grid`` and ``scratch_particles`` of :func:`~terradyn.mpm._kernels.advance`
+    (:func:`~terradyn.mpm._kernels.make_scratch`; no band, zero normals).
     """
-    g_mod = material[0]
-    lam = material[1]
-    dilatancy = material[8] if material.shape[0] > 8 else 0.0
-    loose_density = material[9] if material.shape[0] > 9 else material[7]
     grid_vel_m = scratch_grid[:, :, 0:2]
     node = scratch_grid[:, :, 2:5]
-    n_patch = grid_mass.shape[0] if averaged else 0
-    patch = np.zeros((n_patch, grid_mass.shape[1] if averaged else 0, 5, 2))
-    div_bar = np.empty(pos.shape[0] if averaged else 0)
-    keys = np.empty((pos.shape[0] if averaged else 0, 3), dtype=np.int64)
+    side = scratch_grid[:, :, 5:16]
+    no_box = (0, -1, 0, -1)  # no body: no two-field nodes
+    patches = patch_scratch(averaged, pos, grid_mass)
+    keep_old = flip > 0.0 or local_damping > 0.0
+    old = flip_scratch(keep_old, pos, buf, grid_mass)
+    buf_old = old[3]
     s = settled
-    use_flip = flip > 0.0
-    use_old = use_flip or local_damping > 0.0
-    vel_old, pos_old, zero_stress, buf_old, grid_dv = flip_scratch(use_old, pos, buf, grid_mass)
     for k in range(n_steps):
         step = step0 + k
         zg = z0 - s if follow else z0
@@ -109,80 +107,60 @@ def advance_footing(
         if step < ramp_steps:
             ramp = 0.5 * (1.0 - np.cos(np.pi * (step + 0.5) / ramp_steps))
         vz_foot = -speed * ramp
-        if use_old:
-            # the grid velocity before this step's forces: momentum / mass of a force-free scatter
-            p2g(pos, vel, aff, zero_stress, mass, vol, x0, zg, h, dt, buf_old)
-            vel_old[:] = vel
-            pos_old[:] = pos
-        p2g(pos, vel, aff, stress, mass, vol, x0, zg, h, dt, buf)
+        # 1. particle -> grid
+        step_to_grid(pos, vel, aff, stress, mass, vol, x0, zg, h, dt, buf, old, keep_old)
+        # 2. grid update: momentum, gravity, walls; the floor, damping, symmetry plane and footing nodes
         grid_update(buf, grid_mass, grid_vel, dt, gravity, damping, pad, wall_kind, wall_mu)
-        j_floor = pad
-        if follow:
-            # the node line nearest the world floor and those below it: the floor stays within h/2
-            # of floor_z (rounding down instead let it sink with the grid by up to a cell, and the bed
-            # with it: 40-70 um in 0.1 s of hold at B/40, docs/mpm.md)
-            j_floor = int(np.floor((floor_z - zg) / h + 0.5))
-            for i in range(grid_mass.shape[0]):
-                for j in range(pad + 1, j_floor + 1):
-                    if grid_vel[i, j, 1] < 0.0:
-                        grid_vel[i, j, 1] = 0.0
+        j_floor = following_floor(grid_vel, zg, floor_z, h, pad) if follow else pad
         if local_damping > 0.0:
             local_damp(buf_old, grid_mass, grid_vel, local_damping, pad, j_floor, foot_i, foot_j)
         if symmetric:
-            for i in range(pad + 1):
-                for j in range(grid_mass.shape[1]):
-                    grid_vel[i, j, 0] = 0.0
-        fx = 0.0
-        fz = 0.0
-        for i in range(foot_i[0], foot_i[1] + 1):
-            for j in range(foot_j[0], foot_j[1] + 1):
-                m = grid_mass[i, j]
-                if m <= _MASS_EPS:
-                    continue
-                if rough:
-                    fx -= m * (0.0 - grid_vel[i, j, 0]) / dt
-                    grid_vel[i, j, 0] = 0.0
-                fz -= m * (vz_foot - grid_vel[i, j, 1]) / dt
-                grid_vel[i, j, 1] = vz_foot
-        if averaged:
-            patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, zg, h, patch, keys, div_bar)
-        if use_flip:
-            grid_change(buf_old, grid_mass, grid_vel, grid_dv)
-        g2p(
-            pos,
-            vel,
-            aff,
-            stress,
-            mass,
-            vol,
-            gdot,
-            grid_vel,
-            grid_vel_m,
-            geo,
-            node,
-            x0,
-            zg,
-            h,
-            dt,
-            bounds,
-            g_mod,
-            lam,
-            material[2],
-            material[3],
-            material[4],
-            material[5],
-            material[6],
-            material[7],
-            dilatancy,
-            loose_density,
-            div_bar,
-        )
-        if use_flip:
-            flip_blend(pos_old, vel_old, vel, grid_dv, x0, zg, h, flip)
+            grid_vel[: pad + 1, :, 0] = 0.0
+        fx, fz = footing_nodes(grid_mass, grid_vel, foot_i, foot_j, rough, vz_foot, dt)
+        # 3. grid -> particle, stress update
+        step_to_particles(pos, vel, aff, stress, mass, vol, gdot, grid_mass, grid_vel, grid_vel_m, geo, node,
+                          side, no_box, x0, zg, h, dt, bounds, material, averaged, patches, flip,
+                          old)  # fmt: skip
         forces[k, 0] = fx
         forces[k, 1] = fz
         forces[k, 2] = vz_foot
         s -= vz_foot * dt
+
+
+@njit(cache=True)
+def following_floor(grid_vel, z0, floor_z, h, pad):
+    """The floor of a grid that follows the footing (origin ``z0`` [m] this step): the node line
+    nearest the world floor ``floor_z`` [m] and those below it down to the wall line ``pad`` lose
+    any downward velocity. The floor stays within h/2 of ``floor_z`` (rounding down instead let it
+    sink with the grid by up to a cell, and the bed with it: 40-70 um in 0.1 s of hold at B/40,
+    docs/mpm.md). Returns the floor's node line."""
+    j_floor = int(np.floor((floor_z - z0) / h + 0.5))
+    for i in range(grid_vel.shape[0]):
+        for j in range(pad + 1, j_floor + 1):
+            if grid_vel[i, j, 1] < 0.0:
+                grid_vel[i, j, 1] = 0.0
+    return j_floor
+
+
+@njit(cache=True)
+def footing_nodes(grid_mass, grid_vel, foot_i, foot_j, rough, vz_foot, dt):
+    """The footing's grid condition, in place: the nodes ``foot_i[0] <= i <= foot_i[1]``,
+    ``foot_j[0] <= j <= foot_j[1]`` holding mass take the vertical velocity ``vz_foot`` [m/s] (and
+    ``v_x = 0`` if ``rough``). Returns the force of the grains on the footing (F_x, F_z) [N/m]: the
+    impulse the condition takes from the grid over ``dt`` [s]."""
+    fx = 0.0
+    fz = 0.0
+    for i in range(foot_i[0], foot_i[1] + 1):
+        for j in range(foot_j[0], foot_j[1] + 1):
+            m = grid_mass[i, j]
+            if m <= _MASS_EPS:
+                continue
+            if rough:
+                fx -= m * (0.0 - grid_vel[i, j, 0]) / dt
+                grid_vel[i, j, 0] = 0.0
+            fz -= m * (vz_foot - grid_vel[i, j, 1]) / dt
+            grid_vel[i, j, 1] = vz_foot
+    return fx, fz
 
 
 @njit(cache=True)

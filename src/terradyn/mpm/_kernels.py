@@ -11,6 +11,11 @@ One step has the three phases of the literature (update-stress-last):
 3. grid -> particle (:func:`g2p`): ``v_p = sum w_ip v_i``, ``C_p = 4/h^2 sum w_ip v_i (x_i - x_p)^T``,
    ``L_p = sum v_i grad w_ip^T``, ``x_p += dt v_p``, ``V_p *= exp(dt tr L_p)``, stress update.
 
+Phases 1 and 3 with their options (the force-free scatter and blend of FLIP, the patch-averaged
+divergence) are :func:`step_to_grid` and :func:`step_to_particles`, shared by the two step loops: the
+body's (:func:`advance`) and the footing's (:func:`terradyn.mpm._footing_kernels.advance_footing`),
+each of which adds its own grid conditions after :func:`grid_update`.
+
 Grid node ``(i, j)`` sits at world ``(x0 + i h, z0 + j h)``. Particle arrays: positions ``pos`` (N, 2)
 [m], velocities ``vel`` (N, 2) [m/s], affine matrices ``aff`` (N, 2, 2) [1/s], stresses ``stress``
 (N, 4) = (s_xx, s_zz, s_xz, s_yy) [Pa], masses ``mass`` (N,) [kg/m] and volumes ``vol`` (N,) [m^2]
@@ -52,6 +57,8 @@ __all__ = [
     "body_particles",
     "body_project",
     "body_project_sides",
+    "chunk_sum",
+    "flip_scratch",
     "g2p",
     "grid_totals",
     "grid_update",
@@ -60,7 +67,10 @@ __all__ = [
     "p2g",
     "p2g_sides",
     "patch_divergence",
+    "patch_scratch",
     "polygon_sdf",
+    "step_to_grid",
+    "step_to_particles",
 ]
 
 
@@ -458,6 +468,107 @@ def flip_blend(pos_old, vel_old, vel, grid_dv, x0, z0, h, flip):
 
 
 @njit(cache=True)
+def patch_scratch(averaged, pos, grid_mass):
+    """Scratch of the patch-averaged divergence (empty when ``averaged`` is false): the patch sums
+    (nx, nz, 5, 2), the points' patch keys (N, 3) int64 and their divergence (N,) (see
+    :func:`patch_divergence`)."""
+    n = pos.shape[0] if averaged else 0
+    return (
+        np.zeros((grid_mass.shape[0] if averaged else 0, grid_mass.shape[1] if averaged else 0, 5, 2)),
+        np.empty((n, 3), dtype=np.int64),
+        np.empty(n),
+    )
+
+
+@njit(cache=True)
+def step_to_grid(pos, vel, aff, stress, mass, vol, x0, z0, h, dt, buf, old, keep_old):
+    """Phase 1 of a step, particle -> grid: :func:`p2g` into ``buf``. With ``keep_old`` it first
+    keeps what the FLIP blend and the local damping read: a force-free scatter (the grid velocity
+    before this step's forces) into ``old``'s buffer and the points' velocities and positions
+    (``old`` from :func:`flip_scratch`)."""
+    vel_old, pos_old, zero_stress, buf_old, _ = old
+    if keep_old:
+        p2g(pos, vel, aff, zero_stress, mass, vol, x0, z0, h, dt, buf_old)
+        vel_old[:] = vel
+        pos_old[:] = pos
+    p2g(pos, vel, aff, stress, mass, vol, x0, z0, h, dt, buf)
+
+
+@njit(cache=True)
+def step_to_particles(
+    pos,
+    vel,
+    aff,
+    stress,
+    mass,
+    vol,
+    gdot,
+    grid_mass,
+    grid_vel,
+    grid_vel_m,
+    geo,
+    node,
+    side,
+    box,
+    x0,
+    z0,
+    h,
+    dt,
+    bounds,
+    material,
+    averaged,
+    patches,
+    flip,
+    old,
+):
+    """Phase 3 of a step, grid -> particle, once the grid velocities hold every condition: the
+    patch-averaged divergence if ``averaged`` (:func:`patch_divergence`, scratch ``patches`` from
+    :func:`patch_scratch`), then :func:`g2p` and, for ``flip`` > 0, the FLIP blend
+    (:func:`grid_change` against the force-free scatter in ``old``, the two-field nodes of the body's
+    node ``box`` flagged by :func:`mark_two_fields`, then :func:`flip_blend`). ``material`` as in
+    :func:`advance`; ``geo``, ``node``, ``side`` and ``grid_vel_m`` are the two-field contact's
+    (zero normals and an empty ``box`` (0, -1, 0, -1) without a body)."""
+    patch, keys, div_bar = patches
+    vel_old, pos_old, _, buf_old, grid_dv = old
+    if averaged:
+        patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, keys, div_bar)
+    if flip > 0.0:
+        grid_change(buf_old, grid_mass, grid_vel, grid_dv)
+        mark_two_fields(node, side, box, grid_dv)
+    g2p(
+        pos,
+        vel,
+        aff,
+        stress,
+        mass,
+        vol,
+        gdot,
+        grid_vel,
+        grid_vel_m,
+        geo,
+        node,
+        x0,
+        z0,
+        h,
+        dt,
+        bounds,
+        material[0],
+        material[1],
+        material[2],
+        material[3],
+        material[4],
+        material[5],
+        material[6],
+        material[7],
+        material[8] if material.shape[0] > 8 else 0.0,
+        material[9] if material.shape[0] > 9 else material[7],
+        div_bar,
+    )
+    if flip > 0.0:
+        flip_blend(pos_old, vel_old, vel, grid_dv, x0, z0, h, flip)
+
+
+@njit(cache=True)
 def advance(
     n_steps,
     pos,
@@ -517,11 +628,11 @@ def advance(
     ``averaged`` selects the patch-averaged velocity divergence (:func:`patch_divergence`).
     ``flip`` in [0, 1] blends the velocity update towards FLIP (:func:`flip_blend`), except for the
     points next to a thin body's far-side grain field; 0 (default) is APIC alone.
+
+    The step's shared phases are :func:`step_to_grid`, :func:`grid_update` and
+    :func:`step_to_particles` (the footing loop of :mod:`terradyn.mpm._footing_kernels` runs the same
+    three); what is the body's own comes between them.
     """
-    g_mod = material[0]
-    lam = material[1]
-    dilatancy = material[8] if material.shape[0] > 8 else 0.0
-    loose_density = material[9] if material.shape[0] > 9 else material[7]
     sides = has_body and (contact == CONTACT_SIDES or contact == CONTACT_SIDES_GAP)
     gap_check = contact == CONTACT_SIDES_GAP
     grid_vel_m = scratch_grid[:, :, 0:2]
@@ -534,25 +645,17 @@ def advance(
     n_near = 0
     box = (0, -1, 0, -1)
     node[:, :, 2] = _FAR  # no band yet (and no stale two-field state for g2p)
-    n_patch = grid_mass.shape[0] if averaged else 0
-    patch = np.zeros((n_patch, grid_mass.shape[1] if averaged else 0, 5, 2))
-    div_bar = np.empty(pos.shape[0] if averaged else 0)
-    keys = np.empty((pos.shape[0] if averaged else 0, 3), dtype=np.int64)
+    patches = patch_scratch(averaged, pos, grid_mass)
     if not sides:
         geo[:] = 0.0
     use_flip = flip > 0.0
-    vel_old, pos_old, zero_stress, buf_old, grid_dv = flip_scratch(use_flip, pos, buf, grid_mass)
+    old = flip_scratch(use_flip, pos, buf, grid_mass)
     for step in range(n_steps):
         # 1. particle -> grid (and, near the body, the two grain fields)
         if sides:
             n_near = body_particles(pos, seg, pose, reach + 2.5 * h, geo, near)
             box = body_nodes(x0, z0, h, seg, pose, reach, band, node, box)
-        if use_flip:
-            # the grid velocity before this step's forces: a force-free scatter
-            p2g(pos, vel, aff, zero_stress, mass, vol, x0, z0, h, dt, buf_old)
-            vel_old[:] = vel
-            pos_old[:] = pos
-        p2g(pos, vel, aff, stress, mass, vol, x0, z0, h, dt, buf)
+        step_to_grid(pos, vel, aff, stress, mass, vol, x0, z0, h, dt, buf, old, use_flip)
         if sides:
             p2g_sides(
                 pos, vel, aff, stress, mass, vol, geo, near, n_near, node, box, x0, z0, h, dt, side, gap_check
@@ -583,43 +686,9 @@ def advance(
             pose[1] += dt * twist[1]
             pose[2] += dt * twist[2]
         # 3. grid -> particle, stress update; particles kept out of the body
-        if averaged:
-            patch_divergence(pos, vol, geo, node, grid_vel, grid_vel_m, x0, z0, h, patch, keys, div_bar)
-        if use_flip:
-            grid_change(buf_old, grid_mass, grid_vel, grid_dv)
-            if sides:
-                mark_two_fields(node, side, box, grid_dv)
-        g2p(
-            pos,
-            vel,
-            aff,
-            stress,
-            mass,
-            vol,
-            gdot,
-            grid_vel,
-            grid_vel_m,
-            geo,
-            node,
-            x0,
-            z0,
-            h,
-            dt,
-            bounds,
-            g_mod,
-            lam,
-            material[2],
-            material[3],
-            material[4],
-            material[5],
-            material[6],
-            material[7],
-            dilatancy,
-            loose_density,
-            div_bar,
-        )
-        if use_flip:
-            flip_blend(pos_old, vel_old, vel, grid_dv, x0, z0, h, flip)
+        step_to_particles(pos, vel, aff, stress, mass, vol, gdot, grid_mass, grid_vel, grid_vel_m, geo, node,
+                          side, box, x0, z0, h, dt, bounds, material, averaged, patches, flip,
+                          old)  # fmt: skip
         if has_body:
             if sides:
                 px, pz, pt = body_project_sides(

@@ -28,6 +28,7 @@ from ..materials import Material
 
 __all__ = [
     "LOOSE_DENSITY_RATIO",
+    "MAX_DILATANCY",
     "BedPacking",
     "GranularModel",
     "Wall",

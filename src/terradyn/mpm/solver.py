@@ -33,6 +33,7 @@ __all__ = [
     "Phase",
     "RunInterrupted",
     "Runner",
+    "initial_density",
     "make_bed",
     "stable_time_step",
 ]

@@ -36,7 +36,7 @@ from .runs import (
 from .solver import BedGrid, Phase, stable_time_step
 from .specs import Bed, Drive, Outputs, Resolution
 
-__all__ = ["WheelResult", "run_wheel"]
+__all__ = ["WHEEL_CELLS_ACROSS", "WheelResult", "bed_limits", "run_wheel"]
 
 
 @dataclass(frozen=True, eq=False)

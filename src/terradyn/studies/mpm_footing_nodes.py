@@ -11,7 +11,9 @@ stays on the surface node line while the grains move away from it, so only settl
 cell read right); the settlement is small, like the FE's, and the reading is the plateau of the
 bearing pressure, not an intercept.
 
-Everything else is the MPM of the intrusion runs: the bed of :func:`terradyn.mpm.solver.make_bed`
+The MPM run is :func:`terradyn.mpm.run_node_footing`; this module picks the continuum and reads the
+bearing factor from its pressure curve. Everything else is the MPM of the intrusion runs: the bed of
+:func:`terradyn.mpm.solver.make_bed`
 (geostatic stress, K0 = nu / (1 - nu)), its damped settling (:func:`terradyn.mpm.model.default_settle_time`),
 the Dunatunga-Kamrin continuum with mu_s = mu_2 = sin(phi) (rate independent, isochoric), the point or
 patch-averaged volumetric update, quadratic B-splines and free-slip walls. A symmetry plane at x = 0
@@ -36,14 +38,13 @@ at B/80 (4 B x 2 B). :func:`footing_loading_rate` runs both models over a range 
 from __future__ import annotations
 
 import math
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..errors import InputError, SolverError, check_length, check_positive, check_range
+from ..errors import InputError, check_length, check_range
 
 __all__ = [
     "LoadingRateStudy",
@@ -198,148 +199,39 @@ def node_strip_footing(
     the solver's APIC (0) towards FLIP (1), a diagnostic of the transfer's numerical dissipation
     (docs/mpm.md, "What the rate error is"); positions and affine matrices stay APIC's.
     ``local_damping`` alpha in [0, 0.95] adds the local damping of quasi-static explicit codes at the
-    free nodes (:func:`terradyn.mpm._footing_kernels.local_damp`); a diagnostic: it does not stop
+    free nodes (:func:`terradyn.mpm.run_node_footing`); a diagnostic: it does not stop
     pure FLIP's creep and adds a speed-dependent excess (docs/mpm.md, "The creep is not ringing").
-    ``progress(done, total)`` gets the steps done.
+    ``progress(done, total)`` gets the steps done. The MPM run is
+    :func:`terradyn.mpm.run_node_footing`; this function picks the continuum for phi and reads
+    N_gamma from its pressure curve.
     """
-    from .. import materials
-    from ..mpm import _footing_kernels as FK
-    from ..mpm import _kernels as K
-    from ..mpm.model import BedPacking, default_settle_time, resolve_model
-    from ..mpm.solver import GRID_PAD, BedGrid, initial_density, make_bed, stable_time_step
-    from .mpm_calibration import poisson_ratio_for_stability
+    from ..mpm import FootingPush, NodeFootingCase, Resolution, run_node_footing
 
     phi_deg = check_range("friction_angle_deg", friction_angle_deg, 20.0, 45.0, unit="deg")
-    if base not in ("smooth", "rough"):
-        raise InputError("base", base, "'smooth' or 'rough'")
-    if volumetric not in ("point", "patch"):
-        raise InputError("volumetric", volumetric, "'point' or 'patch'")
-    b = check_length("width", width)
-    h = b / 20.0 if cell_size is None else check_positive("cell_size", cell_size)
-    n_half = round(0.5 * b / h)
-    if n_half < 2 or abs(n_half * h - 0.5 * b) > 1e-6 * h:
-        raise InputError(
-            "cell_size", h, f"B/2 / k for a whole k >= 2 (B = {b:g} m)", "the footing edge is a node"
-        )
-    half_l, depth_b = (float(v) for v in domain_widths)
-    if not (1.0 <= half_l <= 20.0 and 0.5 <= depth_b <= 10.0):
-        raise InputError(
-            "domain_widths", domain_widths, "(half-width in [1, 20], depth in [0.5, 10]) footing widths"
-        )
-    ratio = check_range("settlement_ratio", settlement_ratio, 1e-3, 0.05)
-    check_positive("speed", speed)
-    check_range("ramp_crossings", ramp_crossings, 0.0, 1e3)
-    check_range("hold_time", hold_time, 0.0, 10.0, unit="s")
-    flip = check_range("flip", flip, 0.0, 1.0)
+    case = NodeFootingCase(width=width, base=base, domain_widths=domain_widths, symmetric=symmetric,
+                           follow=follow, base_rows=base_rows)  # fmt: skip
+    resolution = Resolution(cell_size=cell_size, particles_per_cell=particles_per_cell, cfl=cfl,
+                            volumetric=volumetric, flip=flip)  # fmt: skip
+    push = FootingPush(speed=speed, ramp_crossings=ramp_crossings, settlement_ratio=settlement_ratio,
+                       hold_time=hold_time)  # fmt: skip
     local_damping = check_range("local_damping", local_damping, 0.0, 0.95)
-    mat = materials.get(material) if isinstance(material, str) else material
-    if mat.continuum is None or mat.bulk_density is None:
-        raise InputError("material", mat.name, "a medium with a [continuum] table and a bulk density")
-    mu = math.sin(math.radians(phi_deg))
-    nu = max(mat.continuum.poisson_ratio, poisson_ratio_for_stability(mu))
-    model = resolve_model(mat, friction_coefficient=mu, poisson_ratio=nu)
-
-    half_cells = max(n_half + 2, round(half_l * b / h))
-    grid = BedGrid(
-        width=(half_cells if symmetric else 2 * half_cells) * h,
-        depth=depth_b * b,
-        air=4.0 * h,
-        cell_size=h,
-        x_left=0.0 if symmetric else -half_cells * h,
-    )
-    state = make_bed(model, grid, particles_per_cell=particles_per_cell, gravity=9.81)
-    rho = initial_density(model.bulk_density, model.critical_density, BedPacking.CONSOLIDATED)
-    gamma = rho * 9.81
-    nx, nz = grid.shape
-    x0, z0 = grid.origin
-    i_centre = round(-x0 / h)
-    j_surface = round(-z0 / h)
-    foot_i = np.array([i_centre if symmetric else i_centre - n_half, i_centre + n_half], dtype=np.int64)
-    foot_j = np.array([j_surface, j_surface + base_rows - 1], dtype=np.int64)
-
-    dt = stable_time_step(model, h, cfl=cfl, speed=speed)
-    wave = model.wave_speed()
-    n_settle = max(1, round(default_settle_time(model, grid.depth, BedPacking.CONSOLIDATED, 9.81) / dt))
-    ramp_steps = round(ramp_crossings * grid.depth / wave / dt)
-    settlement = ratio * b
-    # the ramp covers half its duration x speed; the rest at constant speed
-    ramp_travel = 0.5 * ramp_steps * dt * speed
-    if ramp_travel >= settlement:
-        raise InputError(
-            "speed",
-            speed,
-            f"below {speed * settlement / ramp_travel:.3g} m/s",
-            "the ramp must end before the reading",
-        )
-    n_push = ramp_steps + math.ceil((settlement - ramp_travel) / (speed * dt))
-    n_hold = round(hold_time / dt)
-    total = n_settle + n_push + n_hold
-    record_every = max(1, n_push // 400)
-
-    buf = K.make_buffer(nx, nz, len(state.pos))
-    gm = np.zeros((nx, nz))
-    gv = np.zeros((nx, nz, 2))
-    scratch, geo, _ = K.make_scratch(nx, nz, len(state.pos))
-    kinds = np.zeros(3, dtype=np.int64)
-    mus = np.zeros(3)
-    mat_arr = model.as_kernel_array()
-    args = (state.pos, state.vel, state.aff, state.stress, state.mass, state.vol, state.gdot, buf, gm, gv,
-            x0, z0, h, dt, 9.81)  # fmt: skip
-    t0 = time.perf_counter()
-    done = 0
-
-    def chunk(n: int, step0: int, damping: float, v: float, settled: float) -> np.ndarray:
-        nonlocal done
-        f = np.zeros((n, 3))
-        FK.advance_footing(n, step0, *args, damping, GRID_PAD, kinds, mus, grid.bounds, mat_arr,
-                           foot_i, foot_j, base == "rough", symmetric, v, ramp_steps, settled, follow,
-                           -grid.depth, scratch, geo, volumetric == "patch", f, flip,
-                           local_damping)  # fmt: skip
-        if not np.all(np.isfinite(f)):
-            raise SolverError(f"the node footing went unstable (cell {h:g} m); lower cfl")
-        done += n
-        if progress is not None:
-            progress(float(done), float(total))
-        return f
-
-    settle_chunk = max(1, n_settle // 20)
-    k = 0
-    while k < n_settle:
-        n = min(settle_chunk, n_settle - k)
-        chunk(n, 0, wave / grid.depth, 0.0, 0.0)  # the footing nodes held still while the bed settles
-        k += n
-    rows = []
-    k = 0
-    s = 0.0
-    while k < n_push:
-        n = min(record_every, n_push - k)
-        f = chunk(n, k, 0.0, speed, s)
-        s += float(-np.sum(f[:, 2]) * dt)
-        rows.append((s, float(np.mean(f[:, 1]))))
-        k += n
-    held_rows = []
-    k = 0
-    while k < n_hold:  # the footing nodes at rest (speed 0), the grid with them
-        n = min(record_every, n_hold - k)
-        f = chunk(n, n_push + k, 0.0, 0.0, s)
-        k += n
-        held_rows.append((k * dt, float(np.mean(f[:, 1]))))
-    wall = time.perf_counter() - t0
-    arr = np.array(rows)
-    loaded = (0.5 if symmetric else 1.0) * b
-    q = arr[:, 1] / loaded
+    model = _footing_model(material, phi_deg)
+    run = run_node_footing(model, case, resolution=resolution, push=push, local_damping=local_damping,
+                           progress=progress)  # fmt: skip
+    b = case.width
+    settlement = push.settlement_ratio * b
+    gamma = run.unit_weight_N_m3
+    q = run.pressure_Pa
     n_gamma = 2.0 * q / (gamma * b)
-    tail = n_gamma[arr[:, 0] >= 0.75 * settlement]
-    drift, peak_ratio = plateau_measures(arr[:, 0], n_gamma)
-    held_arr = np.array(held_rows).reshape(-1, 2)
-    held_q = held_arr[:, 1] / loaded
-    held_n = 2.0 * held_q / (gamma * b)
+    tail = n_gamma[run.settlement_m >= 0.75 * settlement]
+    drift, peak_ratio = plateau_measures(run.settlement_m, n_gamma)
+    held_n = 2.0 * run.held_pressure_Pa / (gamma * b)
     return NodeFooting(
         friction_angle_deg=phi_deg,
         base=base,
         width_m=b,
-        cell_size_m=h,
-        domain_m=(grid.width, grid.depth),
+        cell_size_m=run.cell_size_m,
+        domain_m=run.domain_m,
         symmetric=symmetric,
         volumetric=volumetric,
         particles_per_cell=particles_per_cell,
@@ -348,18 +240,34 @@ def node_strip_footing(
         unit_weight_N_m3=gamma,
         N_gamma=float(np.mean(tail)),
         N_gamma_spread=float(np.max(tail) - np.min(tail)),
-        curve=(arr[:, 0], q),
-        particles=len(state.pos),
-        steps=total,
-        wall_s=wall,
+        curve=(run.settlement_m, q),
+        particles=run.particles,
+        steps=run.steps,
+        wall_s=run.wall_s,
         N_gamma_held=float(np.mean(held_n[int(0.75 * len(held_n)) :])) if len(held_n) else None,
-        held_curve=(held_arr[:, 0], held_q) if len(held_n) else None,
-        push_time_s=n_push * dt,
-        flip=flip,
+        held_curve=(run.held_time_s, run.held_pressure_Pa) if len(held_n) else None,
+        push_time_s=run.push_time_s,
+        flip=resolution.flip,
         local_damping=local_damping,
         N_gamma_drift=drift,
         N_gamma_peak_ratio=peak_ratio,
     )
+
+
+def _footing_model(material: Any, phi_deg: float) -> Any:
+    """The continuum of the node footing: ``material``'s (a name or a Material with a [continuum]
+    table and a bulk density) with mu_s = mu_2 = sin(phi) and the Poisson ratio raised, if need be, to
+    keep the bed stable (:func:`terradyn.studies.mpm_calibration.poisson_ratio_for_stability`)."""
+    from .. import materials
+    from ..mpm.model import resolve_model
+    from .mpm_calibration import poisson_ratio_for_stability
+
+    mat = materials.get(material) if isinstance(material, str) else material
+    if mat.continuum is None or mat.bulk_density is None:
+        raise InputError("material", mat.name, "a medium with a [continuum] table and a bulk density")
+    mu = math.sin(math.radians(phi_deg))
+    nu = max(mat.continuum.poisson_ratio, poisson_ratio_for_stability(mu))
+    return resolve_model(mat, friction_coefficient=mu, poisson_ratio=nu)
 
 
 @dataclass(frozen=True)
