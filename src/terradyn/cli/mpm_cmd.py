@@ -52,6 +52,24 @@ def _dilatancy(value: float) -> float | None:
     return value or None
 
 
+def _resolution(
+    cell_size: float | None, particles_per_cell: int, contact: str, volumetric: str, flip: float
+) -> Resolution:
+    """The resolution spec of --cell-size, --particles-per-cell, --contact, --volumetric and --flip."""
+    return Resolution(
+        cell_size=cell_size,
+        particles_per_cell=particles_per_cell,
+        contact=contact,
+        volumetric=volumetric,
+        flip=flip,
+    )
+
+
+def _surface_friction(value: float | None) -> float | None:
+    """The model override of --surface-friction (None: the medium's)."""
+    return None if value is None else check_finite("--surface-friction", value)
+
+
 def _write_series(result: Any, path: Path | None) -> None:
     if path is not None:
         atomic_write_text(path, result.to_dataframe().to_csv(index=False), field_name="--series")
@@ -229,17 +247,8 @@ def intrude(
     if not speed > 0:
         raise InputError("--speed", speed, "a speed > 0 [m/s]")
     bed = Bed(packing=packing, walls=walls)
-    resolution = Resolution(
-        cell_size=cell_size,
-        particles_per_cell=particles_per_cell,
-        contact=contact,
-        volumetric=volumetric,
-        flip=flip,
-    )
-    intervals = {
-        "record_interval": _interval("--record-interval", record_interval),
-        "snapshot_interval": _interval("--snapshot-interval", snapshot_interval),
-    }
+    resolution = _resolution(cell_size, particles_per_cell, contact, volumetric, flip)
+    intervals = _intervals(record_interval, snapshot_interval)
     with _interruptible(outs), fraction_progress("MPM intrusion", "s") as bar:
         res = run_intrusion(
             shape,
@@ -252,9 +261,7 @@ def intrude(
             resolution=resolution,
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             dilatancy=_dilatancy(dilatancy),
-            surface_friction=None
-            if surface_friction is None
-            else check_finite("--surface-friction", surface_friction),
+            surface_friction=_surface_friction(surface_friction),
         )
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)
@@ -276,6 +283,16 @@ def _interval(flag: str, interval: float | None, duration: float | None = None) 
     if not 0 < interval <= top:
         raise InputError(flag, interval, f"a time in (0, {top:g}] [s]")
     return interval
+
+
+def _intervals(
+    record_interval: float | None, snapshot_interval: float | None, duration: float | None = None
+) -> dict[str, float | None]:
+    """--record-interval and --snapshot-interval checked (:func:`_interval`), as Outputs keywords."""
+    return {
+        "record_interval": _interval("--record-interval", record_interval, duration),
+        "snapshot_interval": _interval("--snapshot-interval", snapshot_interval, duration),
+    }
 
 
 @app.command("drag")
@@ -331,10 +348,7 @@ def drag(
     shape = build_body(body, width, **sizes)
     outs = _Outputs(out=out, plot=None, series=series, fields=fields, animate=animate, frames=frames,
                     snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip
-    intervals = {
-        "record_interval": _interval("--record-interval", record_interval),
-        "snapshot_interval": _interval("--snapshot-interval", snapshot_interval),
-    }
+    intervals = _intervals(record_interval, snapshot_interval)
     with _interruptible(outs), fraction_progress("MPM drag", "s") as bar:
         res = run_drag(
             shape,
@@ -344,19 +358,11 @@ def drag(
             speed=check_finite("--speed", speed),
             angle=math.radians(check_finite("--angle", angle)),
             bed=Bed(packing=packing, walls=walls, window=window),
-            resolution=Resolution(
-                cell_size=cell_size,
-                particles_per_cell=particles_per_cell,
-                contact=contact,
-                volumetric=volumetric,
-                flip=flip,
-            ),
+            resolution=_resolution(cell_size, particles_per_cell, contact, volumetric, flip),
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             stroke=Stroke(averaging_window=averaging_window),
             dilatancy=_dilatancy(dilatancy),
-            surface_friction=None
-            if surface_friction is None
-            else check_finite("--surface-friction", surface_friction),
+            surface_friction=_surface_friction(surface_friction),
         )
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)
@@ -475,36 +481,22 @@ def wheel(
     body = _mpm_wheel(shape, width, sizes)
     outs = _Outputs(out=out, plot=plot, series=series, fields=fields, animate=animate, frames=frames,
                     snapshots=snapshots, checkpoint=checkpoint, resume=resume)  # fmt: skip
-    intervals = {
-        "record_interval": _interval("--record-interval", record_interval, duration),
-        "snapshot_interval": _interval("--snapshot-interval", snapshot_interval, duration),
-    }
+    intervals = _intervals(record_interval, snapshot_interval, duration)
     with _interruptible(outs), fraction_progress("MPM wheel", "s") as bar:
         res = run_wheel(
-            body,
-            materials.get(material),
-            load=load,
-            omega=omega,
-            slip=slip,
-            forward_speed=forward_speed,
-            drive_torque=drive_torque,
-            max_omega=max_omega,
-            drawbar_load=drawbar_load,
+            body, materials.get(material), load=load, omega=omega, slip=slip, forward_speed=forward_speed,
+            drive_torque=drive_torque, max_omega=max_omega, drawbar_load=drawbar_load,
             bed=Bed(packing=packing, walls=walls, window=window, width=bed_length, depth=bed_depth),
-            resolution=Resolution(
-                cell_size=cell_size,
-                particles_per_cell=particles_per_cell,
-                contact=contact,
-                volumetric=volumetric,
-                flip=flip,
-            ),
+            resolution=_resolution(cell_size, particles_per_cell, contact, volumetric, flip),
             outputs=outs.spec(checkpoint_interval, resume, bar, **intervals),
             drive=Drive(duration=duration, spin_up=spin_up, initial_speed=initial_speed),
-            dilatancy=_dilatancy(dilatancy),
-            surface_friction=None
-            if surface_friction is None
-            else check_finite("--surface-friction", surface_friction),
-        )
+            dilatancy=_dilatancy(dilatancy), surface_friction=_surface_friction(surface_friction),
+        )  # fmt: skip
+    _report_wheel(res, outs, fmt)
+
+
+def _report_wheel(res: Any, outs: _Outputs, fmt: OutputFormat) -> None:
+    """The outputs of a wheel run: series, fields, plot, the summary record and the bed warnings."""
     _write_series(res, outs.series)
     _field_outputs(res, outs.fields, outs.animate)
     if outs.plot is not None:
@@ -678,9 +670,7 @@ def converge_drag_cmd(
             bed=Bed(packing=packing, walls=walls),
             resolution=Resolution(particles_per_cell=particles_per_cell, volumetric=volumetric, flip=flip),
             grid_phases=grid_phases,
-            surface_friction=None
-            if surface_friction is None
-            else check_finite("--surface-friction", surface_friction),
+            surface_friction=_surface_friction(surface_friction),
         )
     _emit_convergence(res, fmt, out_path, plot_path, f"MPM {body.value} drag")
 

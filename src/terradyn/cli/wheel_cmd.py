@@ -347,6 +347,22 @@ def self_propelled(
     emit(_steady_record(res), fmt, out_path)
 
 
+def _sweep_models(
+    model: str, *, c1: float, c2: float, exit_angle: float, element_size: float | None
+) -> tuple[list[str], list[str], dict[str, Any]]:
+    """The --model names of a sweep: the 3D ones, the plane ones and the plane ones' model factories."""
+    names = [m.strip() for m in model.split(",") if m.strip()]
+    dimension = {n: model_entry(n, use="sweep", field="--model").dimension for n in names}
+    spatial = [n for n in names if dimension[n] == 3]
+    plane = [n for n in names if dimension[n] == 2]
+    factories = {
+        n: model_factory(n, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size) for n in plane
+    }
+    if not names:
+        raise InputError("--model", model, f"one or more of {', '.join(model_names(use='sweep'))}")
+    return spatial, plane, factories
+
+
 @app.command("sweep")
 @wheel_flags
 def sweep(
@@ -388,35 +404,17 @@ def sweep(
     plot: str | None = PLOT,
 ) -> None:
     """Force-slip and sinkage-slip curves over media x models x loads x slips (x slip angles in 3D)."""
-    from ..locomotion import force_slip_sweep
-    from ..locomotion.sweeps import force_slip_sweep_3d
+    from ._wheel_sweep import SweepRun, plane_table, spatial_table, stack, sweep_grid
 
     out_path, plot_path = out_file("--out", out), plot_file("--plot", plot)
     if workers is not None and not 1 <= workers <= 256:
         raise InputError("--workers", workers, "an integer in [1, 256]")
     flags = shape_flags(shape, sizes)
-    names = [m.strip() for m in model.split(",") if m.strip()]
-    dimension = {n: model_entry(n, use="sweep", field="--model").dimension for n in names}
-    spatial = [n for n in names if dimension[n] == 3]
-    plane = [n for n in names if dimension[n] == 2]
-    factories = {
-        n: model_factory(n, c1=c1, c2=c2, exit_angle_deg=exit_angle, element_size=element_size) for n in plane
-    }
-    if not names:
-        raise InputError("--model", model, f"one or more of {', '.join(model_names(use='sweep'))}")
+    spatial, plane, factories = _sweep_models(
+        model, c1=c1, c2=c2, exit_angle=exit_angle, element_size=element_size
+    )
     kin = _kinematics(0.0, slip_definition, None, None)
-    loads = parse_float_list("--load", load)
-    slips = parse_float_list("--slip", slip)
-    for s in slips:
-        if not -1.0 <= s <= 1.0:
-            raise InputError("--slip", slip, "slips in [-1, 1]")
-    angles = parse_float_list("--slip-angle", slip_angle)
-    for a in angles:
-        if not abs(a) < 90.0:
-            raise InputError(
-                "--slip-angle", slip_angle, "angles in (-90, 90) [deg]",
-                "at 90 deg give the speeds: wheel steady --rim-speed --carriage-speed",
-            )  # fmt: skip
+    grid = sweep_grid(load, slip, slip_angle)
     if not spatial:
         for flag, value, default in (
             ("--mesh", mesh, None), ("--xi", xi, None), ("--center", center, None),
@@ -424,58 +422,27 @@ def sweep(
         ):  # fmt: skip
             if value != default:
                 raise InputError(flag, value, "only with --model rft3d")
-        if angles != [0.0]:
+        if grid.angles != [0.0]:
             raise InputError("--slip-angle", slip_angle, "only with --model rft3d")
     material_names = [m.strip() for m in material.split(",") if m.strip()]
     if not material_names:
         raise InputError("--material", material, "one or more media, comma separated")
     media = [materials.get(m) for m in material_names] if plane or xi is None else []
     tables = []
-    total = len(media) * len(plane) + (len(material_names) if xi is None else 1) * len(spatial) * len(angles)
-    total *= len(loads) * len(slips)
+    media_3d_count = len(material_names) if xi is None else 1
+    total = len(media) * len(plane) + media_3d_count * len(spatial) * len(grid.angles)
+    total *= len(grid.loads) * len(grid.slips)
     with progress(total, "wheel sweep") as advance:
+        run = SweepRun(omega, kin.definition, scheduler, workers, advance)
         if plane:
-            body = wheel_body(shape, width, flags)
-            tables.append(
-                force_slip_sweep(
-                    body,
-                    media,
-                    factories,
-                    loads,
-                    slips,
-                    omega=omega,
-                    phase_count=phases,
-                    on_point=advance,
-                    scheduler=scheduler,
-                    workers=workers,
-                    slip_definition=kin.definition,
-                )
-            )
+            tables.append(plane_table(wheel_body(shape, width, flags), media, factories, grid, run, phases))
         if spatial:
             culling = mesh is not None if cull is None else cull
             spec = _Wheel3DSpec(mesh, mesh_units, axle, center, culling)
             wheel, phase_count = _wheel_3d(shape, flags, width, spec, phases)
             media_3d = [_medium_3d(m, None) for m in material_names] if xi is None else [_medium_3d("", xi)]
-            if culling:
-                from ..locomotion.steady3d import wheel_contact_mesh
-
-                wheel = wheel_contact_mesh(wheel, slip_angle=[math.radians(a) for a in angles])
-            tables.append(
-                force_slip_sweep_3d(
-                    wheel,
-                    media_3d,
-                    loads,
-                    slips,
-                    [math.radians(a) for a in angles],
-                    omega=omega,
-                    phase_count=phase_count,
-                    slip_definition=kin.definition,
-                    on_point=advance,
-                    scheduler=scheduler,
-                    workers=workers,
-                )
-            )
-    table = _stack(tables)
+            tables.append(spatial_table(wheel, media_3d, grid, run, phase_count, culling))
+    table = stack(tables)
     if plot_path is not None:
         plot_sweep(table.columns, sorted(set(table.columns["material"].tolist()), key=str), plot_path)
     failures = table.metadata["failures"]
@@ -483,27 +450,6 @@ def sweep(
         first = " ".join(str(failures[0]).split())
         typer.echo(f"terradyn: {len(failures)} point(s) not solved, e.g. {first}", err=True)
     emit(table.records(), fmt, out_path, title="wheel sweep")
-
-
-def _stack(tables: list[Any]) -> Any:
-    """One table from plane and 3D sweep tables (plane rows get slip angle, side force and moment 0)."""
-    if len(tables) == 1:
-        return tables[0]
-    import numpy as np
-
-    from ..results import TableResult
-
-    names = list(tables[-1].columns)
-    cols = {}
-    for name in names:
-        parts = []
-        for t in tables:
-            n = len(t)
-            parts.append(t.columns[name] if name in t.columns else np.zeros(n))
-        cols[name] = np.concatenate(parts)
-    meta = dict(tables[0].metadata)
-    meta["failures"] = [f for t in tables for f in t.metadata["failures"]]
-    return TableResult(cols, meta)
 
 
 def plot_sweep(columns: dict[str, Any], media: list[str], path: Path) -> None:

@@ -212,6 +212,129 @@ def _body_fixes(lmp: Any, params: dict[str, Any]) -> None:
         lmp.command(line)
 
 
+@dataclass(frozen=True)
+class _Motion:
+    """The prescribed motion: ``depth`` [m] of the reference point at the end, ``direction`` [rad below
+    +x], body ``angle`` [rad] and ``speed`` [m/s]."""
+
+    depth: float
+    direction: float
+    angle: float
+    speed: float
+
+
+@dataclass(frozen=True, eq=False)
+class _Placement:
+    """The body at its start in a bed: its spheres (x, y, z [m]) and their diameter [m], the start pose
+    (x, z below the surface [m], angle [rad]), the travel [m] to the end and the width [m] the forces
+    act over (the slab's thickness in a periodic bed, else the body's width)."""
+
+    pts: np.ndarray
+    sphere_diameter: float
+    start: tuple[float, float, float]
+    travel: float
+    width: float
+
+
+def _settled_bed(material: Material, spec: BedSpec, progress: Callable[[float, float], None] | None) -> Bed:
+    """Pour and settle the bed of ``spec``; its settling is the first 30 % of ``progress``."""
+
+    def settle_progress(t: float, f: float) -> None:
+        if progress is not None:
+            progress(0.0, 0.3 * f)
+
+    return prepare_bed(material, spec, progress=settle_progress)
+
+
+def _place(bed: Bed, body: Body | MeshIntruder, motion: _Motion) -> _Placement:
+    """The body's start clear of the grains under its path and its spheres there; closes the bed and
+    raises one :class:`InputError` line if the bed is too low, too narrow or too short for it."""
+    d = bed.dem.grain_diameter
+    depth, direction, angle = motion.depth, motion.direction, motion.angle
+    _xmin, _xmax, zmin, zmax = rotated_extent(body, angle)
+    ux, uz = math.cos(direction), -math.sin(direction)
+    gap = _start_gap(bed, body, depth, direction, angle)
+    travel = (gap + depth - zmin) / math.sin(direction)
+    start = (-travel * ux, -depth - travel * uz, angle)
+    if bed.box[5] - bed.surface < zmax - zmin + gap + 0.5 * d:
+        bed.close()
+        raise InputError(
+            "bed headroom", bed.box[5] - bed.surface, f"at least {zmax - zmin + gap + 0.5 * d:.4g} m"
+        )
+    periodic = bed.spec.kind is BedKind.SLAB
+    y_range = (bed.box[2], bed.box[3]) if periodic else (
+        0.5 * (bed.box[2] + bed.box[3]) - 0.5 * body.width, 0.5 * (bed.box[2] + bed.box[3]) + 0.5 * body.width
+    )  # fmt: skip
+    if not periodic and body.width > bed.thickness - 4 * d:
+        bed.close()
+        raise InputError(
+            "width", body.width, f"below {bed.thickness - 4 * d:.4g} m (the 3d bed's width less 4 grains)"
+        )
+    pts, d_w = body_spheres(body, d, start, bed.surface, y_range, periodic=periodic)
+    if pts[:, 0].min() < bed.box[0] + d or pts[:, 0].max() > bed.box[1] - d:
+        bed.close()
+        raise InputError("bed length", bed.box[1] - bed.box[0], "a bed longer than the body's path")
+    width = bed.thickness if periodic else body.width
+    return _Placement(pts, d_w, start, travel, width)
+
+
+def _insert_body(bed: Bed, placement: _Placement) -> int:
+    """Add the body's spheres to the bed as group ``body`` and restart the step count; returns the
+    bed's atom count before."""
+    lmp = bed.lmp
+    n0 = int(lmp.get_natoms())
+    _add_atoms(lmp, placement.pts, n0)
+    for line in (
+        "group body clear",
+        f"group body type {BODY_TYPE}",
+        f"set type {BODY_TYPE} diameter {placement.sphere_diameter:.17g}",
+        f"set type {BODY_TYPE} density {bed.dem.grain_density:.17g}",
+        "reset_timestep 0",
+    ):
+        lmp.command(line)
+    return n0
+
+
+def _run_params(
+    bed: Bed, body: Body | MeshIntruder, material: Material, motion: _Motion, placement: _Placement,
+    spacing: float, grain_count: int,
+) -> dict[str, Any]:  # fmt: skip
+    """The run's parameters as its checkpoint keeps them: motion, chunking (a history row per
+    ``spacing`` [m] of travel), bed, grains and the LAMMPS settings a resume restores."""
+    speed, direction, start = motion.speed, motion.direction, placement.start
+    ux, uz = math.cos(direction), -math.sin(direction)
+    dt = bed.dt
+    chunk = max(10, round(spacing / (speed * dt)))
+    total_steps = math.ceil(placement.travel / (speed * dt))
+    centroid = placement.pts[:, [0, 2]].mean(axis=0)
+    ref0 = np.array([start[0], bed.surface + start[1]])
+    return {
+        "velocity": [speed * ux, speed * uz],
+        "ref_offset": (ref0 - centroid).tolist(),
+        "start": list(start),
+        "surface": bed.surface,
+        "chunk": chunk,
+        "rows": max(1, math.ceil(total_steps / chunk)),
+        "dt": dt,
+        "speed": speed,
+        "depth": motion.depth,
+        "direction": direction,
+        "angle": motion.angle,
+        "width": placement.width,
+        "force_scale": body.width / placement.width,
+        "grain_diameter": bed.dem.grain_diameter,
+        "body_spheres": len(placement.pts),
+        "grain_count": grain_count,
+        "bed": bed.summary(),
+        "bed_kind": bed.spec.kind.value,
+        "gravity": bed.spec.gravity,
+        "material": material.name,
+        "dem": _dem_dict(bed),
+        "box": list(bed.box),
+        "newton": newton_setting(bed.lmp),
+    }
+
+
 def run_intrusion(
     body: Body | MeshIntruder | TriangleMesh,
     material: Material,
@@ -265,87 +388,20 @@ def run_intrusion(
                    "frame_count": frame_count}  # fmt: skip
         return _resume(ckpt, checkpoint_interval, progress, stop_after_rows, body, outputs)
     dem = material.require_dem()
-    d = grain_diameter if grain_diameter is not None else dem.grain_diameter
     if bed is None:
+        d = grain_diameter if grain_diameter is not None else dem.grain_diameter
         spec = bed_spec or default_bed_spec(
             body, depth=depth, direction=direction, angle=angle, grain_diameter=d, kind=kind, packing=packing
         )
-
-        def settle_progress(t: float, f: float) -> None:
-            if progress is not None:
-                progress(0.0, 0.3 * f)
-
-        bed = prepare_bed(material, spec, progress=settle_progress)
-    d = bed.dem.grain_diameter
-    _xmin, _xmax, zmin, zmax = rotated_extent(body, angle)
-    ux, uz = math.cos(direction), -math.sin(direction)
-    gap = _start_gap(bed, body, depth, direction, angle)
-    travel = (gap + depth - zmin) / math.sin(direction)
-    start = (-travel * ux, -depth - travel * uz, angle)
-    if bed.box[5] - bed.surface < zmax - zmin + gap + 0.5 * d:
-        bed.close()
-        raise InputError(
-            "bed headroom", bed.box[5] - bed.surface, f"at least {zmax - zmin + gap + 0.5 * d:.4g} m"
-        )
-    periodic = bed.spec.kind is BedKind.SLAB
-    y_range = (bed.box[2], bed.box[3]) if periodic else (
-        0.5 * (bed.box[2] + bed.box[3]) - 0.5 * body.width, 0.5 * (bed.box[2] + bed.box[3]) + 0.5 * body.width
-    )  # fmt: skip
-    if not periodic and body.width > bed.thickness - 4 * d:
-        bed.close()
-        raise InputError(
-            "width", body.width, f"below {bed.thickness - 4 * d:.4g} m (the 3d bed's width less 4 grains)"
-        )
-    pts, d_w = body_spheres(body, d, start, bed.surface, y_range, periodic=periodic)
-    if pts[:, 0].min() < bed.box[0] + d or pts[:, 0].max() > bed.box[1] - d:
-        bed.close()
-        raise InputError("bed length", bed.box[1] - bed.box[0], "a bed longer than the body's path")
-    width = bed.thickness if periodic else body.width
-    lmp = bed.lmp
-    dt = bed.dt
-    spacing = record_spacing if record_spacing is not None else 0.1 * d
+        bed = _settled_bed(material, spec, progress)
+    motion = _Motion(depth, direction, angle, speed)
+    placement = _place(bed, body, motion)
+    spacing = record_spacing if record_spacing is not None else 0.1 * bed.dem.grain_diameter
     if not spacing > 0 or not math.isfinite(spacing):
         raise InputError("record_spacing", spacing, "a travel > 0 [m] per history row")
-    chunk = max(10, round(spacing / (speed * dt)))
-    total_steps = math.ceil(travel / (speed * dt))
-    rows = max(1, math.ceil(total_steps / chunk))
-    n0 = int(lmp.get_natoms())
-    _add_atoms(lmp, pts, n0)
-    for line in (
-        "group body clear",
-        f"group body type {BODY_TYPE}",
-        f"set type {BODY_TYPE} diameter {d_w:.17g}",
-        f"set type {BODY_TYPE} density {bed.dem.grain_density:.17g}",
-        "reset_timestep 0",
-    ):
-        lmp.command(line)
-    centroid = pts[:, [0, 2]].mean(axis=0)
-    ref0 = np.array([start[0], bed.surface + start[1]])
-    params: dict[str, Any] = {
-        "velocity": [speed * ux, speed * uz],
-        "ref_offset": (ref0 - centroid).tolist(),
-        "start": list(start),
-        "surface": bed.surface,
-        "chunk": chunk,
-        "rows": rows,
-        "dt": dt,
-        "speed": speed,
-        "depth": depth,
-        "direction": direction,
-        "angle": angle,
-        "width": width,
-        "force_scale": body.width / width,
-        "grain_diameter": d,
-        "body_spheres": len(pts),
-        "grain_count": n0,
-        "bed": bed.summary(),
-        "bed_kind": bed.spec.kind.value,
-        "gravity": bed.spec.gravity,
-        "material": material.name,
-        "dem": _dem_dict(bed),
-        "box": list(bed.box),
-        "newton": newton_setting(lmp),
-    }
+    lmp = bed.lmp
+    n0 = _insert_body(bed, placement)
+    params = _run_params(bed, body, material, motion, placement, spacing, n0)
     _body_fixes(lmp, params)
     history: dict[str, list[float]] = {k: [] for k in HISTORY_KEYS}
     try:

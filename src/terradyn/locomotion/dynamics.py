@@ -466,6 +466,124 @@ def _initial_state(
     return np.array([pose.x, pose.z, pose.theta, vx, vz, omega0])
 
 
+@dataclass(frozen=True, eq=False)
+class _Geometry:
+    """A body as the integrator sees it: its elements, outline points [m] (body frame), nominal radius
+    [m], rotation period [rad] (None: no symmetry) and whether it is a wheel (has an outer radius)."""
+
+    elements: SurfaceElements
+    outline: NDArray[np.float64]
+    radius: float
+    period: float | None
+    is_wheel: bool
+
+
+@dataclass(frozen=True)
+class _Dynamics:
+    """What moves the body besides its drive: the terrain model (DRFT options), the medium, mass m
+    [kg], moment of inertia [kg m^2], g [m/s^2] and the drawbar load [N]."""
+
+    drft: DRFTModel
+    material: Material
+    mass: float
+    inertia: float
+    gravity: float
+    drawbar_load: float
+
+
+@dataclass(frozen=True)
+class _TimeGrid:
+    """Time step [s], number of steps and the steps per output sample."""
+
+    dt: float
+    n_steps: int
+    output_every: int
+
+
+def _body_and_model(
+    body: Body | SurfaceElements,
+    material: Material,
+    model: str | RFTModel | DRFTModel,
+    gravity: float,
+    element_size: float | None,
+    elements: SurfaceElements | None,
+    nominal_radius: float | None,
+) -> tuple[DRFTModel, float, _Geometry]:
+    """The checked medium and g [m/s^2], the model as DRFT options and the body discretised (by the
+    model's element size unless one or the elements are given)."""
+    if not isinstance(material, Material):
+        raise InputError("material", type(material).__name__, "a terradyn Material")
+    gravity = check_positive("gravity", gravity)
+    drft = _resolve_model(material, model, gravity)
+    size = element_size if (element_size is not None or elements is not None) else drft.element_size
+    elems, outline, radius, period = _geometry(body, size, nominal_radius, elements)
+    is_wheel = getattr(body, "outer_radius", None) is not None
+    return drft, gravity, _Geometry(elems, outline, radius, period, is_wheel)
+
+
+def _time_grid(
+    geo: _Geometry,
+    material: Material,
+    mass: float,
+    drive: _Drive,
+    duration: float,
+    dt: float | None,
+    output_every: int,
+) -> _TimeGrid:
+    """The checked run length and step (default or at most the limit of :func:`_dt_limits`) and the
+    output sampling."""
+    duration = check_positive("duration", duration)
+    limit, default = _dt_limits(geo.elements, material, mass, drive.omega_max, geo.radius, geo.period)
+    dt = default if dt is None else check_positive("dt", dt)
+    if dt > limit * (1 + 1e-12):
+        raise InputError(
+            "dt",
+            dt,
+            f"a step in (0, {limit:.4g}] s",
+            "the limit of the implicit scheme for this body, mass and spin (stable_time_step)",
+        )
+    n_steps = round(duration / dt)
+    if n_steps < 1 or n_steps > 50_000_000:
+        raise InputError("duration", duration, f"between dt and {50_000_000 * dt:.3g} s")
+    if not isinstance(output_every, int | np.integer) or not (1 <= output_every <= n_steps):
+        raise InputError("output_every", output_every, f"an integer in [1, {n_steps}]")
+    return _TimeGrid(dt, n_steps, output_every)
+
+
+def _checked_tolerance(tolerance: float) -> float:
+    """The Newton tolerance relative to m g: > 0 and at most 1e-3."""
+    tolerance = check_positive("tolerance", tolerance)
+    if tolerance > 1e-3:
+        raise InputError("tolerance", tolerance, "at most 1e-3 (relative to m g)")
+    return tolerance
+
+
+def _integrate(
+    geo: _Geometry,
+    dyn: _Dynamics,
+    drive: _Drive,
+    tolerance: float,
+    state0: NDArray[np.float64],
+    grid: _TimeGrid,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The compiled time loop (:func:`._dynamics_kernels.integrate_wheel_kernel`): samples and stats."""
+    rft = dyn.material.require_rft()
+    params = _kernel_params(geo, dyn, drive, tolerance)
+    elems = geo.elements
+    return K.integrate_wheel_kernel(
+        elems.midpoints,
+        elems.normals,
+        elems.lengths,
+        rft.coefficients.as_array(),
+        geo.outline,
+        params,
+        state0,
+        grid.dt,
+        grid.n_steps,
+        int(grid.output_every),
+    )
+
+
 def simulate_wheel(
     body: Body | SurfaceElements,
     material: Material,
@@ -546,79 +664,39 @@ def simulate_wheel(
     ----------
     Agarwal, Karsai, Goldman, Kamrin, Sci. Adv. 7, eabe0631 (2021), doi:10.1126/sciadv.abe0631.
     """
-    if not isinstance(material, Material):
-        raise InputError("material", type(material).__name__, "a terradyn Material")
-    gravity = check_positive("gravity", gravity)
-    drft = _resolve_model(material, model, gravity)
-    size = element_size if (element_size is not None or elements is not None) else drft.element_size
-    elems, outline, radius, period = _geometry(body, size, nominal_radius, elements)
+    drft, gravity, geo = _body_and_model(
+        body, material, model, gravity, element_size, elements, nominal_radius
+    )
     mass = check_positive("mass", mass)
-    inertia = 0.5 * mass * radius**2 if inertia is None else check_positive("inertia", inertia)
+    inertia = 0.5 * mass * geo.radius**2 if inertia is None else check_positive("inertia", inertia)
     drive = _drive(omega, omega_initial, ramp, step_time, torque)
-    duration = check_positive("duration", duration)
-    limit, default = _dt_limits(elems, material, mass, drive.omega_max, radius, period)
-    dt = default if dt is None else check_positive("dt", dt)
-    if dt > limit * (1 + 1e-12):
-        raise InputError(
-            "dt",
-            dt,
-            f"a step in (0, {limit:.4g}] s",
-            "the limit of the implicit scheme for this body, mass and spin (stable_time_step)",
-        )
-    n_steps = round(duration / dt)
-    if n_steps < 1 or n_steps > 50_000_000:
-        raise InputError("duration", duration, f"between dt and {50_000_000 * dt:.3g} s")
-    if not isinstance(output_every, int | np.integer) or not (1 <= output_every <= n_steps):
-        raise InputError("output_every", output_every, f"an integer in [1, {n_steps}]")
-    tolerance = check_positive("tolerance", tolerance)
-    if tolerance > 1e-3:
-        raise InputError("tolerance", tolerance, "at most 1e-3 (relative to m g)")
-    drawbar_load = check_finite("drawbar_load", drawbar_load)
-    state0 = _initial_state(initial_pose, initial_velocity, outline, drft.surface_level, drive.omega_initial)
-    rft = material.require_rft()
-    is_wheel = getattr(body, "outer_radius", None) is not None
-    params = _kernel_params(
-        drft, elems.width, is_wheel, radius, mass, inertia, gravity, drawbar_load, drive, tolerance
+    grid = _time_grid(geo, material, mass, drive, duration, dt, output_every)
+    tolerance = _checked_tolerance(tolerance)
+    dyn = _Dynamics(drft, material, mass, inertia, gravity, check_finite("drawbar_load", drawbar_load))
+    state0 = _initial_state(
+        initial_pose, initial_velocity, geo.outline, drft.surface_level, drive.omega_initial
     )
-    out, stats = K.integrate_wheel_kernel(
-        elems.midpoints,
-        elems.normals,
-        elems.lengths,
-        rft.coefficients.as_array(),
-        outline,
-        params,
-        state0,
-        dt,
-        n_steps,
-        int(output_every),
-    )
-    return _result(
-        out, stats, drft, is_wheel, radius, period, mass, inertia, gravity, drawbar_load, dt, material
-    )
+    out, stats = _integrate(geo, dyn, drive, tolerance, state0, grid)
+    return _result(out, stats, geo, dyn, grid.dt)
 
 
-def _kernel_params(
-    drft: DRFTModel,
-    width: float,
-    is_wheel: bool,
-    radius: float,
-    mass: float,
-    inertia: float,
-    gravity: float,
-    drawbar_load: float,
-    drive: _Drive,
-    tolerance: float,
-) -> NDArray[np.float64]:
+def _kernel_params(geo: _Geometry, dyn: _Dynamics, drive: _Drive, tolerance: float) -> NDArray[np.float64]:
     """The ``params`` array of :func:`._dynamics_kernels.integrate_wheel_kernel`."""
+    drft, radius, gravity = dyn.drft, geo.radius, dyn.gravity
     params = np.zeros(K.N_PARAMS)
     params[[K.P_WIDTH, K.P_SCALE, K.P_SURFACE, K.P_LAM_RHO]] = (
-        width,
+        geo.elements.width,
         drft.material.require_rft().scale,
         drft.surface_level,
         drft.inertial_density,
     )
-    params[K.P_DROP_COEFF] = radius**2 / gravity if (drft.structural_correction and is_wheel) else 0.0
-    params[[K.P_MASS, K.P_INERTIA, K.P_GRAVITY, K.P_DRAWBAR]] = (mass, inertia, gravity, drawbar_load)
+    params[K.P_DROP_COEFF] = radius**2 / gravity if (drft.structural_correction and geo.is_wheel) else 0.0
+    params[[K.P_MASS, K.P_INERTIA, K.P_GRAVITY, K.P_DRAWBAR]] = (
+        dyn.mass,
+        dyn.inertia,
+        gravity,
+        dyn.drawbar_load,
+    )
     params[[K.P_MODE, K.P_OMEGA0, K.P_OMEGA1, K.P_RAMP, K.P_STEP_TIME, K.P_TORQUE]] = (
         drive.mode,
         drive.omega_initial,
@@ -635,17 +713,13 @@ def _kernel_params(
 def _result(
     out: NDArray[np.float64],
     stats: NDArray[np.float64],
-    drft: DRFTModel,
-    is_wheel: bool,
-    radius: float,
-    period: float | None,
-    mass: float,
-    inertia: float,
-    gravity: float,
-    drawbar_load: float,
+    geo: _Geometry,
+    dyn: _Dynamics,
     dt: float,
-    material: Material,
 ) -> WheelDynamicsResult:
+    """The run's result from the kernel's samples and stats; a :class:`SolverError` for non-finite
+    values or too many unconverged steps."""
+    drft, is_wheel = dyn.drft, geo.is_wheel
     if not np.all(np.isfinite(out)):
         raise SolverError("simulate_wheel: the integration produced non-finite values; reduce dt")
     keys = (
@@ -672,7 +746,7 @@ def _result(
         return series
 
     meta = {
-        "material": material.name,
+        "material": dyn.material.name,
         "inertial_coefficient": drft.inertial_coefficient,
         "density_kg_m3": drft.density,
         "structural_correction": drft.structural_correction and is_wheel,
@@ -695,12 +769,12 @@ def _result(
         soil_torque=col(K.C_SOIL_TORQUE),
         soil_work=col(K.C_WORK),
         model=name,
-        nominal_radius=radius,
-        rotation_period=period,
-        mass=mass,
-        inertia=inertia,
-        gravity=gravity,
-        drawbar_load=drawbar_load,
+        nominal_radius=geo.radius,
+        rotation_period=geo.period,
+        mass=dyn.mass,
+        inertia=dyn.inertia,
+        gravity=dyn.gravity,
+        drawbar_load=dyn.drawbar_load,
         dt=dt,
         stats=st,
         metadata=meta,

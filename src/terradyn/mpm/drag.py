@@ -139,6 +139,104 @@ def _drag_bed(seg: np.ndarray, c: _Common, depth: float, distance: float, sense:
     return grid, np.array([-0.5 * distance * sense, -depth, angle]), window
 
 
+@dataclass(frozen=True)
+class _DragPath:
+    """The checked drag: ``depth`` [m] of the reference point, ``distance`` [m], signed ``speed``
+    [m/s], body ``angle`` [rad] and the summary's averaging ``window`` [m] of travel."""
+
+    depth: float
+    distance: float
+    speed: float
+    angle: float
+    window: float
+
+    @property
+    def sense(self) -> float:
+        """+1 along +x, -1 along -x."""
+        return math.copysign(1.0, self.speed)
+
+
+def _drag_path(
+    depth: float, distance: float, speed: float, angle: float, averaging_window: float | None
+) -> _DragPath:
+    """The drag's inputs checked (a nonzero speed, an averaging window within the distance)."""
+    check_positive("depth", depth)
+    check_positive("distance", distance)
+    speed = float(check_range("speed", speed, -10.0, 10.0, unit="m/s"))
+    if speed == 0.0:
+        raise InputError("speed", speed, "a nonzero velocity [m/s]", "+ drags along +x, - along -x")
+    angle = check_range("angle", angle, -2 * math.pi, 2 * math.pi, unit="rad")
+    window = 0.5 * distance if averaging_window is None else averaging_window
+    if window > distance:
+        raise InputError("averaging_window", window, f"at most the distance {distance:g} m")
+    return _DragPath(depth, distance, speed, angle, window)
+
+
+def _drag_phases(c: _Common, bed_depth: float, path: _DragPath, dt: float) -> tuple[list[Phase], float]:
+    """The settling phases around the still body, then the drag at constant velocity; and the
+    settling time [s]."""
+    settle_phases, settle = _settle_phases(c, bed_depth, dt)
+    phases = [
+        *settle_phases,
+        Phase(
+            "drag",
+            max(1, math.ceil(path.distance / abs(path.speed) / dt)),
+            twist=(path.speed, 0.0, 0.0),
+            free=(False, False),
+        ),
+    ]
+    return phases, settle
+
+
+def _drag_inputs(
+    path: _DragPath, settle: float, grid: BedGrid, bed_window: float, frame_count: int
+) -> dict[str, Any]:
+    """The run's inputs as its record keeps them (:func:`terradyn.mpm.runs._run_inputs`)."""
+    return dict(
+        run="drag",
+        depth=path.depth,
+        distance=path.distance,
+        speed=path.speed,
+        angle=path.angle,
+        averaging_window=path.window,
+        settle_time=settle,
+        bed_length=grid.width,
+        bed_depth=grid.depth,
+        window=bed_window,
+        frame_count=frame_count,
+    )
+
+
+def _drag_series(runner: Any, width: float, x0: float, sense: float) -> dict[str, np.ndarray]:
+    """The run's series with the travel from ``x0`` [m] (``distance_m``), ``drag_N`` and ``lift_N``."""
+    series = _series(runner, width, skip_phases=1)
+    return {
+        "distance_m": np.abs(series["x_m"] - x0),
+        **series,
+        "drag_N": -sense * series["force_x_N"],
+        "lift_N": series["force_z_N"].copy(),
+    }
+
+
+def _drag_summary(series: dict[str, np.ndarray], path: _DragPath) -> dict[str, Any]:
+    """The forces averaged over the last ``path.window`` of travel, the drag's spread and the inputs."""
+    sel = series["distance_m"] >= path.distance - path.window - 1e-12
+    if not np.any(sel):  # pragma: no cover - the run always ends past the window
+        raise InputError("averaging_window", path.window, "a window containing recorded rows", "widen it")
+    return {
+        **{
+            k: float(series[k][sel].mean())
+            for k in ("drag_N", "lift_N", "force_x_N", "force_z_N", "torque_y_Nm")
+        },
+        "drag_std_N": float(series["drag_N"][sel].std()),
+        "depth_m": float(path.depth),
+        "speed_m_s": path.speed,
+        "distance_m": float(path.distance),
+        "angle_rad": float(path.angle),
+        "averaging_window_m": float(path.window),
+    }
+
+
 def run_drag(
     body: Body,
     material: Material | GranularModel,
@@ -177,74 +275,22 @@ def run_drag(
         "run_drag", body, material, legacy, bed, resolution, outputs, stroke
     )
     outputs, h = specs["outputs"], c.cell_size
-    check_positive("depth", depth)
-    check_positive("distance", distance)
-    speed = float(check_range("speed", speed, -10.0, 10.0, unit="m/s"))
-    if speed == 0.0:
-        raise InputError("speed", speed, "a nonzero velocity [m/s]", "+ drags along +x, - along -x")
-    angle = check_range("angle", angle, -2 * math.pi, 2 * math.pi, unit="rad")
-    window = specs["stroke"].averaging_window
-    window = 0.5 * distance if window is None else window
-    if window > distance:
-        raise InputError("averaging_window", window, f"at most the distance {distance:g} m")
-    sense = math.copysign(1.0, speed)
+    path = _drag_path(depth, distance, speed, angle, specs["stroke"].averaging_window)
     seg = body_segments(eff, h)
-    grid, pose0, bed_window = _drag_bed(seg, c, depth, distance, sense, angle)
-    dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=abs(speed))
-    settle_phases, settle = _settle_phases(c, grid.depth, dt)
-    phases = [
-        *settle_phases,
-        Phase(
-            "drag",
-            max(1, math.ceil(distance / abs(speed) / dt)),
-            twist=(speed, 0.0, 0.0),
-            free=(False, False),
-        ),
-    ]
-    every = _output_every(outputs, dt, abs(speed), 0.25 * h, 4 * h)
+    grid, pose0, bed_window = _drag_bed(seg, c, depth, distance, path.sense, path.angle)
+    dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=abs(path.speed))
+    phases, settle = _drag_phases(c, grid.depth, path, dt)
+    every = _output_every(outputs, dt, abs(path.speed), 0.25 * h, 4 * h)
     # the kernels move the body's pose in place: keep pose0 as the start
     state = _body_state(c, seg, pose0.copy(), np.zeros(2, dtype=np.bool_), 1.0, np.zeros(2), body.width)
-    named = dict(
-        run="drag",
-        depth=depth,
-        distance=distance,
-        speed=speed,
-        angle=angle,
-        averaging_window=window,
-        settle_time=settle,
-        bed_length=grid.width,
-        bed_depth=grid.depth,
-        window=bed_window,
-        frame_count=outputs.frame_count,
-    )
-    runner = _runner(c, grid, state, dt, phases, every, abs(speed), outputs, _run_inputs(c, body, named))
+    named = _drag_inputs(path, settle, grid, bed_window, outputs.frame_count)
+    runner = _runner(c, grid, state, dt, phases, every, abs(path.speed), outputs, _run_inputs(c, body, named))
     bed_count = len(runner.particles)
     runner.particles = remove_grains_inside(runner.particles, seg, pose0)
     runner.window = bed_window
     wall = _execute(runner, outputs.resume, eff)
-    series = _series(runner, body.width, skip_phases=1)
-    travel = np.abs(series["x_m"] - pose0[0])
-    series = {
-        "distance_m": travel,
-        **series,
-        "drag_N": -sense * series["force_x_N"],
-        "lift_N": series["force_z_N"].copy(),
-    }
-    sel = travel >= distance - window - 1e-12
-    if not np.any(sel):  # pragma: no cover - the run always ends past the window
-        raise InputError("averaging_window", window, "a window containing recorded rows", "widen it")
-    summary = {
-        **{
-            k: float(series[k][sel].mean())
-            for k in ("drag_N", "lift_N", "force_x_N", "force_z_N", "torque_y_Nm")
-        },
-        "drag_std_N": float(series["drag_N"][sel].std()),
-        "depth_m": float(depth),
-        "speed_m_s": speed,
-        "distance_m": float(distance),
-        "angle_rad": float(angle),
-        "averaging_window_m": float(window),
-    }
+    series = _drag_series(runner, body.width, pose0[0], path.sense)
+    summary = _drag_summary(series, path)
     meta = _metadata(runner, c.model, body, eff, wall)
     meta["removed_particles"] = bed_count - len(runner.particles)
     meta["placement"] = "grains inside the body removed before settling"

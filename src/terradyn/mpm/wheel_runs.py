@@ -220,6 +220,16 @@ class _WheelMotion:
     def direction(self) -> float:
         return self.v_forward if not self.torque_mode else (1.0 if self.torque >= 0 else -1.0)
 
+    @property
+    def mode(self) -> str:
+        """torque-driven, forced-slip, towed or self-propelled (the run's metadata ``mode``)."""
+        modes = (
+            (self.torque_mode, "torque-driven"),
+            (self.slip is not None, "forced-slip"),
+            (self.towed, "towed"),
+        )
+        return next((name for on, name in modes if on), "self-propelled")
+
 
 def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, drive_torque, drawbar_load,
                   max_omega, forward_speed=None) -> _WheelMotion:  # fmt: skip
@@ -301,6 +311,104 @@ def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, dr
     )
 
 
+@dataclass(frozen=True)
+class _WheelCommand:
+    """The run as the caller asked for it: ``load`` [N], spin ``omega`` [rad/s], ``slip``,
+    ``drive_torque`` [N m], ``drawbar_load`` [N], ``max_omega`` [rad/s] under a torque, ``inertia``
+    [kg m^2] (None: a uniform disc) and ``forward_speed`` [m/s] of a towed body."""
+
+    load: float
+    omega: float | None
+    slip: float | None
+    drive_torque: float | None
+    drawbar_load: float
+    max_omega: float
+    inertia: float | None
+    forward_speed: float | None
+
+
+@dataclass(frozen=True, eq=False)
+class _WheelShape:
+    """The wheel as the grid sees it: its boundary ``segments`` [m] (body frame), nominal ``radius``
+    [m], ``reach`` [m] (farthest segment end from the axle) and ``width`` [m] out of plane."""
+
+    segments: np.ndarray
+    radius: float
+    reach: float
+    width: float
+
+
+def _wheel_state(
+    c: _Common, shape: _WheelShape, pose0: np.ndarray, cmd: _WheelCommand, m: _WheelMotion
+) -> tuple[Any, float]:
+    """The wheel's rigid-body state at its start pose (per unit width: mass of the load, the spin's
+    moment of inertia, load, drawbar load and drive torque) and that moment of inertia [kg m]."""
+    w, g = shape.width, c.gravity
+    mass = cmd.load / g / w
+    inertia_w = (
+        0.5 * mass * shape.radius**2 if cmd.inertia is None else check_positive("inertia", cmd.inertia) / w
+    )
+    load_w = np.array([-cmd.drawbar_load / w, -cmd.load / w, m.torque / w])
+    state = _body_state(c, shape.segments, pose0, np.zeros(3, dtype=np.bool_), mass, load_w, w, inertia_w)
+    return state, inertia_w
+
+
+def _wheel_phases(
+    c: _Common, bed_depth: float, m: _WheelMotion, drive: Drive, dt: float
+) -> tuple[list[Phase], float]:
+    """The run's phases (the bed's settling, the wheel sinking under its load, the drive) and the
+    settling time [s]."""
+    settle_phases, settle = _settle_phases(c, bed_depth, dt)
+    damping = c.model.wave_speed() / bed_depth
+    imposed = m.slip is not None or m.towed
+    drive_twist = (m.v_forward if imposed else drive.initial_speed, 0.0, m.omega)
+    phases = [
+        *settle_phases,
+        Phase("sink", max(1, round(m.sink_time / dt)), damping=damping, free=(False, True, False)),
+        Phase("drive", max(1, round(m.duration / dt)), twist=drive_twist,
+              free=(not imposed, True, m.torque_mode), ramp_steps=round(drive.spin_up / dt)),
+    ]  # fmt: skip
+    return phases, settle
+
+
+def _wheel_inputs(
+    cmd: _WheelCommand, m: _WheelMotion, drive: Drive, inertia: float, settle: float, grid: BedGrid,
+    frame_count: int,
+) -> dict[str, Any]:  # fmt: skip
+    """The run's inputs as its record keeps them (:func:`terradyn.mpm.runs._run_inputs`)."""
+    return dict(
+        run="wheel",
+        load=cmd.load,
+        omega=cmd.omega,
+        slip=cmd.slip,
+        **({"forward_speed": m.v_forward} if m.towed else {}),
+        drive_torque=cmd.drive_torque,
+        drawbar_load=cmd.drawbar_load,
+        max_omega=cmd.max_omega if m.torque_mode else None,
+        inertia=inertia,
+        duration=m.duration,
+        sink_time=m.sink_time,
+        **({"spin_up": drive.spin_up} if drive.spin_up else {}),
+        **({"initial_speed": drive.initial_speed} if drive.initial_speed else {}),
+        settle_time=settle,
+        bed_length=grid.width,
+        bed_depth=grid.depth,
+        frame_count=frame_count,
+    )
+
+
+def _bed_bounds_metadata(
+    runner: Any, sinkage: np.ndarray, bed_depth: float, shape: _WheelShape, h: float
+) -> dict[str, Any]:
+    """Whether the wheel outgrew its bed: the heap reached a bed end (whole-bed runs) and the floor's
+    clearance (:func:`floor_metadata`)."""
+    meta: dict[str, Any] = {}
+    if runner.window <= 0.0:  # the whole bed: its ends hold a heap as a window's wall did
+        meta.update(heap_metadata(runner, _wheel_margin(shape.reach, h)))
+    meta.update(floor_metadata(sinkage, bed_depth, shape.reach))
+    return meta
+
+
 def run_wheel(
     wheel: Body,
     material: Material | GranularModel,
@@ -371,63 +479,30 @@ def run_wheel(
         min_cells=8,
         default_cells=WHEEL_CELLS_ACROSS,
     )
-    outputs, h, g = specs["outputs"], c.cell_size, c.gravity
+    outputs, drive, h, g = specs["outputs"], specs["drive"], c.cell_size, c.gravity
     radius = _nominal_radius(wheel)
     seg = body_segments(eff, h)
     reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
+    shape = _WheelShape(seg, radius, reach, wheel.width)
+    cmd = _WheelCommand(load, omega, slip, drive_torque, drawbar_load, max_omega, inertia, forward_speed)
     args = (radius, reach, load, omega, slip, drive_torque, drawbar_load, max_omega, forward_speed)
-    m = _wheel_motion(c, specs["drive"], *args)
+    m = _wheel_motion(c, drive, *args)
     grid, pose0 = _wheel_bed(seg, c, m.travel, m.direction)
     v_max = m.spin * reach + (m.spin * radius if m.torque_mode else abs(m.v_forward)) + math.sqrt(2 * g * h)
     dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=v_max)
-    w = wheel.width
-    mass = load / g / w
-    inertia_w = 0.5 * mass * radius**2 if inertia is None else check_positive("inertia", inertia) / w
-    load_w = np.array([-drawbar_load / w, -load / w, m.torque / w])
-    state = _body_state(c, seg, pose0, np.zeros(3, dtype=np.bool_), mass, load_w, w, inertia_w)
-    settle_phases, settle = _settle_phases(c, grid.depth, dt)
-    damping = c.model.wave_speed() / grid.depth
-    imposed = m.slip is not None or m.towed
-    drive_twist = (m.v_forward if imposed else specs["drive"].initial_speed, 0.0, m.omega)
-    phases = [
-        *settle_phases,
-        Phase("sink", max(1, round(m.sink_time / dt)), damping=damping, free=(False, True, False)),
-        Phase("drive", max(1, round(m.duration / dt)), twist=drive_twist,
-              free=(not imposed, True, m.torque_mode), ramp_steps=round(specs["drive"].spin_up / dt)),
-    ]  # fmt: skip
+    state, inertia_w = _wheel_state(c, shape, pose0, cmd, m)
+    phases, settle = _wheel_phases(c, grid.depth, m, drive, dt)
     every = _output_every(outputs, dt, None, m.duration / 200.0, m.duration / 20.0)
-    named = dict(
-        run="wheel",
-        load=load,
-        omega=omega,
-        slip=slip,
-        **({"forward_speed": m.v_forward} if m.towed else {}),
-        drive_torque=drive_torque,
-        drawbar_load=drawbar_load,
-        max_omega=max_omega if m.torque_mode else None,
-        inertia=inertia_w * w,
-        duration=m.duration,
-        sink_time=m.sink_time,
-        **({"spin_up": specs["drive"].spin_up} if specs["drive"].spin_up else {}),
-        **({"initial_speed": specs["drive"].initial_speed} if specs["drive"].initial_speed else {}),
-        settle_time=settle,
-        bed_length=grid.width,
-        bed_depth=grid.depth,
-        frame_count=outputs.frame_count,
-    )
+    named = _wheel_inputs(cmd, m, drive, inertia_w * shape.width, settle, grid, outputs.frame_count)
     runner = _runner(c, grid, state, dt, phases, every, v_max, outputs, _run_inputs(c, wheel, named))
     runner.window = _wheel_window(c, reach)
     runner.window_clearance = _wheel_margin(reach, h) if runner.window > 0 else 0.0
     wall = _execute(runner, outputs.resume, eff)
-    avg = specs["drive"].average_fraction
-    series, summary = _wheel_summary(runner, w, seg, avg, radius, load)
+    series, summary = _wheel_summary(runner, shape.width, seg, drive.average_fraction, radius, load)
     summary["drawbar_load_N"] = float(drawbar_load)
     if m.torque_mode:
         summary["applied_torque_Nm"] = m.torque
     meta = _metadata(runner, c.model, wheel, eff, wall)
-    if runner.window <= 0.0:  # the whole bed: its ends hold a heap as a window's wall did
-        meta.update(heap_metadata(runner, _wheel_margin(reach, h)))
-    meta.update(floor_metadata(series["sinkage_m"], grid.depth, reach))
-    modes = ((m.torque_mode, "torque-driven"), (m.slip is not None, "forced-slip"), (m.towed, "towed"))
-    meta["mode"] = next((name for on, name in modes if on), "self-propelled")
+    meta.update(_bed_bounds_metadata(runner, series["sinkage_m"], grid.depth, shape, h))
+    meta["mode"] = m.mode
     return WheelResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())

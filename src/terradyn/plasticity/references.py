@@ -41,6 +41,7 @@ the ``computed`` and ``estimate`` entries and cross-checks the secondary one.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 from ..errors import InputError
@@ -313,6 +314,85 @@ def _check_angle(phi_deg: Any) -> float:
     return phi_d
 
 
+@dataclass(frozen=True)
+class _Bounds:
+    """The reduced-angle (Davis) estimate of the isochoric N_gamma and the associated value that bounds
+    it from above, each with its kind and source, and the associated value of the MPM's cone (None
+    where unknown)."""
+
+    davis: float
+    davis_kind: str
+    davis_reference: str
+    associated: float | None
+    associated_reference: str
+    associated_kind: str
+    cone: float | None
+
+
+def _smooth_bounds(phi_d: float, phi: float, phi_star: float, phi_cone: float) -> _Bounds:
+    """Smooth base: characteristics at phi* (the estimate), at phi and at the cone's angle (tabulated
+    values where the table has them)."""
+    from .moc import moc_n_gamma
+
+    row = _lookup(phi_d, "smooth", "isochoric", "estimate")
+    davis = row["value"] if row else moc_n_gamma(phi_star).n_gamma
+    assoc_row = _lookup(phi_d, "smooth", "associated", "computed")
+    assoc = assoc_row["value"] if assoc_row else moc_n_gamma(phi).n_gamma
+    cone_row = _lookup(phi_d, "smooth", "associated cone", "computed")
+    if cone_row:
+        cone = cone_row["value"]
+    elif phi_cone <= math.radians(50.0):  # the characteristics solver's range
+        cone = moc_n_gamma(phi_cone).n_gamma
+    else:
+        cone = None
+    return _Bounds(davis, "estimate", _DAVIS, assoc, _MOC, "computed", cone)
+
+
+def _rough_bounds(phi_d: float, phi_star: float) -> _Bounds:
+    """Rough base: Hansen's formula at phi* (an approximation) and the best published associated value."""
+    davis = float(hansen1970_ngamma(phi_star))
+    assoc_row = _best_published(phi_d, "rough", "associated")
+    if assoc_row:
+        assoc, assoc_ref, assoc_kind = assoc_row["value"], assoc_row["source"], assoc_row["kind"]
+    else:
+        assoc = None
+        assoc_ref = _MARTIN + " (exact value not retrieved; not computed by terradyn)"
+        assoc_kind = _NR
+    return _Bounds(davis, "approximation", _DAVIS_HANSEN, assoc, assoc_ref, assoc_kind, None)
+
+
+def _chosen_reference(
+    published: dict[str, Any] | None, fe_row: dict[str, Any] | None, b: _Bounds
+) -> dict[str, Any]:
+    """``N_gamma_reference``, ``reference`` and ``reference_kind``: the published isochoric value, else
+    the finite-element one, else the Davis estimate."""
+    if published:
+        return {
+            "N_gamma_reference": published["value"],
+            "reference": f"{published['source']} ({published['table']})",
+            "reference_kind": published["kind"],
+        }
+    if fe_row:
+        return {
+            "N_gamma_reference": fe_row["value"],
+            "reference": f"{fe_row['source']} ({fe_row['table']})",
+            "reference_kind": fe_row["kind"],
+        }
+    return {"N_gamma_reference": b.davis, "reference": b.davis_reference, "reference_kind": b.davis_kind}
+
+
+def _approximations(phi: float) -> dict[str, float]:
+    """Hansen, Vesic, Meyerhof and EC7 N_gamma at ``phi`` [rad] (context only)."""
+    from . import bearing
+
+    return {
+        "hansen1970": float(bearing.hansen1970_ngamma(phi)),
+        "vesic1973": float(bearing.vesic1973_ngamma(phi)),
+        "meyerhof1963": float(bearing.meyerhof1963_ngamma(phi)),
+        "ec7": float(bearing.ec7_ngamma(phi)),
+    }
+
+
 def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
     """Reference ``N_gamma`` for an MPM strip footing (isochoric flow) at ``phi_deg`` [deg] and ``base``.
 
@@ -338,9 +418,6 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
     Tabulated for 30 and 34 deg; other angles in [10, 45] deg are computed on the fly (about a second
     per characteristics solve).
     """
-    from . import bearing
-    from .moc import moc_n_gamma
-
     phi_d = _check_angle(phi_deg)
     if base not in ("smooth", "rough"):
         raise InputError("base", base, "'smooth' or 'rough'")
@@ -354,75 +431,36 @@ def strip_footing_reference(phi_deg: float, base: str) -> dict[str, Any]:
         "cone_plane_strain_angle_deg": math.degrees(phi_cone),
     }
     # the reduced-angle (Davis) estimate, and the associated value
-    if base == "smooth":
-        row = _lookup(phi_d, base, "isochoric", "estimate")
-        davis = row["value"] if row else moc_n_gamma(phi_star).n_gamma
-        davis_kind, davis_ref = "estimate", _DAVIS
-        assoc_row = _lookup(phi_d, base, "associated", "computed")
-        assoc = assoc_row["value"] if assoc_row else moc_n_gamma(phi).n_gamma
-        assoc_ref, assoc_kind = _MOC, "computed"
-        cone_row = _lookup(phi_d, base, "associated cone", "computed")
-        if cone_row:
-            cone = cone_row["value"]
-        elif phi_cone <= math.radians(50.0):  # the characteristics solver's range
-            cone = moc_n_gamma(phi_cone).n_gamma
-        else:
-            cone = None
-    else:
-        cone = None
-        davis = float(hansen1970_ngamma(phi_star))
-        davis_kind, davis_ref = "approximation", _DAVIS_HANSEN
-        assoc_row = _best_published(phi_d, base, "associated")
-        if assoc_row:
-            assoc, assoc_ref, assoc_kind = assoc_row["value"], assoc_row["source"], assoc_row["kind"]
-        else:
-            assoc = None
-            assoc_ref = _MARTIN + " (exact value not retrieved; not computed by terradyn)"
-            assoc_kind = _NR
+    b = _smooth_bounds(phi_d, phi, phi_star, phi_cone) if base == "smooth" else _rough_bounds(phi_d, phi_star)
     published = _best_published(phi_d, base, "isochoric")
     fe_row = _lookup(phi_d, base, "isochoric", "computed, finite elements")
-    if published:
-        out.update(
-            N_gamma_reference=published["value"],
-            reference=f"{published['source']} ({published['table']})",
-            reference_kind=published["kind"],
-        )
-    elif fe_row:
-        out.update(N_gamma_reference=fe_row["value"], reference=f"{fe_row['source']} ({fe_row['table']})",
-                   reference_kind=fe_row["kind"])  # fmt: skip
-    else:
-        out.update(N_gamma_reference=davis, reference=davis_ref, reference_kind=davis_kind)
+    out.update(_chosen_reference(published, fe_row, b))
     out.update(
         N_gamma_fe_isochoric=fe_row["value"] if fe_row else None,
         N_gamma_fe_band=fe_row["band"] if fe_row else None,
     )
     out.update(
         N_gamma_published_non_associated=published["value"] if published else None,
-        N_gamma_davis_estimate=davis,
-        davis_estimate_kind=davis_kind,
-        davis_estimate_reference=davis_ref,
-        N_gamma_associated=assoc,
-        associated_reference=assoc_ref,
-        associated_kind=assoc_kind,
-        N_gamma_upper_bound=assoc,
+        N_gamma_davis_estimate=b.davis,
+        davis_estimate_kind=b.davis_kind,
+        davis_estimate_reference=b.davis_reference,
+        N_gamma_associated=b.associated,
+        associated_reference=b.associated_reference,
+        associated_kind=b.associated_kind,
+        N_gamma_upper_bound=b.associated,
         upper_bound_reference=_BOUND,
-        N_gamma_upper_bound_cone=cone,
+        N_gamma_upper_bound_cone=b.cone,
         upper_bound_cone_reference=_BOUND_CONE,
         # Radenkovic's second theorem: the associated material of the reduced strength tan(phi*) =
         # sin(phi) carries no more than the non-associated one, so the Davis value at psi = 0 is a
         # lower bound where it is an exact associated solution (the smooth-base characteristics
         # value; the rough base has only Hansen's design formula, which bounds nothing)
-        N_gamma_lower_bound=davis if davis_kind == "estimate" else None,
+        N_gamma_lower_bound=b.davis if b.davis_kind == "estimate" else None,
         lower_bound_reference=_LOWER_BOUND,
     )
     out["N_q"] = float(reissner1924_nq(phi))
     out["N_c"] = float(prandtl1921_nc(phi))
-    out["approximations"] = {
-        "hansen1970": float(bearing.hansen1970_ngamma(phi)),
-        "vesic1973": float(bearing.vesic1973_ngamma(phi)),
-        "meyerhof1963": float(bearing.meyerhof1963_ngamma(phi)),
-        "ec7": float(bearing.ec7_ngamma(phi)),
-    }
+    out["approximations"] = _approximations(phi)
     out["published_non_associated"] = [
         {"source": r["source"], "value": r["value"], "kind": r["kind"], "notes": r["notes"]}
         for r in _rows(phi_d, base, "isochoric")

@@ -34,6 +34,7 @@ from pydantic import Field
 
 from ..errors import InputError
 from ..geometry import Plate, WheelCircular
+from ..materials import Material
 from ..results import TableResult
 from ._base import StudyEntry, StudyOutput, _Params
 from .dem_scaling import DIMENSIONLESS, _medium, check_case
@@ -86,6 +87,235 @@ def _mpm_history(series: dict[str, np.ndarray], r: float, weight: float) -> dict
         "drive_torque_over_MgL": np.asarray(series["drive_torque_Nm"])[drive] / (weight * r),
         "vertical_force_over_Mg": np.asarray(series["force_z_N"])[drive] / weight,
     }
+
+
+@dataclass(frozen=True)
+class _PlateTest:
+    """The calibration test: the plate, how deep [m] and fast [m/s] it goes in DEM, and the MPM's
+    cell size [m] and plate speed [m/s] for the fit."""
+
+    plate: Plate
+    depth: float
+    speed: float
+    mpm_cell_size: float
+    mpm_speed: float
+
+
+@dataclass(frozen=True)
+class _Grains:
+    """The DEM beds: grain diameter [m], packing and the rows recorded per DEM wheel run."""
+
+    diameter: float
+    packing: str
+    rows: int
+
+
+@dataclass(frozen=True)
+class _WheelCase:
+    """The wheel every model rolls: body, load [N], spin [rad/s], slip, travel [m], MPM cell size [m]."""
+
+    wheel: WheelCircular
+    load: float
+    omega: float
+    slip: float
+    travel: float
+    mpm_cell_size: float
+
+
+@dataclass(frozen=True)
+class _Calibration:
+    """What the plate test gave: the RFT and MPM media, the fit figures and the plate table."""
+
+    rft_material: Material
+    mpm_material: Material
+    fits: dict[str, Any]
+    plate: TableResult
+
+
+class _WheelRows:
+    """The wheels table being filled (one row per run) and the time series of the runs with one."""
+
+    def __init__(self) -> None:
+        self.columns: dict[str, list[Any]] = {
+            "model": [],
+            "calibrated": [],
+            "seed": [],
+            **{q: [] for q in DIMENSIONLESS},
+            "wall_time_s": [],
+        }
+        self.histories: list[tuple[str, dict[str, np.ndarray]]] = []
+
+    def add(self, model: str, calibrated: bool, seed: int, values: dict[str, float], wall: float) -> None:
+        """One run's row: ``values`` holds the :data:`DIMENSIONLESS` keys; ``wall`` [s]."""
+        out = self.columns
+        out["model"].append(model)
+        out["calibrated"].append(calibrated)
+        out["seed"].append(seed)
+        for q in DIMENSIONLESS:
+            out[q].append(float(values[q]))
+        out["wall_time_s"].append(wall)
+
+
+def _dem_plate_runs(
+    test: _PlateTest, mat: Material, seeds: Sequence[int], grains: _Grains
+) -> list[tuple[int, np.ndarray, np.ndarray]]:
+    """One DEM plate intrusion per seed, each on its own poured bed: (seed, depth [m], F_z [N])."""
+    from ..dem import runs as dem_runs
+
+    raw = []
+    for seed in seeds:
+        spec = dem_runs.default_bed_spec(
+            test.plate,
+            depth=test.depth,
+            direction=math.pi / 2,
+            angle=0.0,
+            grain_diameter=grains.diameter,
+            packing=grains.packing,
+            seed=int(seed),
+        )
+        res = dem_runs.run_intrusion(
+            test.plate,
+            mat,
+            depth=test.depth,
+            speed=test.speed,
+            bed_spec=spec,
+            packing=grains.packing,
+            grain_diameter=grains.diameter,
+        )
+        raw.append((int(seed), np.asarray(res.history["depth_m"]), np.asarray(res.history["force_z_N"])))
+    return raw
+
+
+def _calibrate(
+    test: _PlateTest, mat: Material, raw: list[tuple[int, np.ndarray, np.ndarray]]
+) -> _Calibration:
+    """Fit RFT's zeta and the MPM's mu_s to the pooled plate rows of every seed."""
+    from ..rft.calibration import fit_rft
+    from .intrusion import intrusion_forces
+    from .mpm_calibration import fit_mpm_friction
+
+    assert mat.continuum is not None
+    plate = test.plate
+    seed_col, data = _plate_data(raw, test.depth)
+    t0 = time.perf_counter()
+    rft_fit = fit_rft(data, plate_length=plate.length, plate_width=plate.width)
+    rft_mat = mat.with_changes(name=f"{mat.name}-rft-from-dem", rft=rft_fit.rft)
+    rft_plate = intrusion_forces(plate, rft_mat, data.depth_m).columns["force_z_N"]
+    mpm_fit = fit_mpm_friction(
+        data,
+        mat,
+        plate_length=plate.length,
+        plate_width=plate.width,
+        cell_size=test.mpm_cell_size,
+        speed=test.mpm_speed,
+    )
+    fit_wall = time.perf_counter() - t0
+    assert mpm_fit.predicted_force_z_N is not None
+    fits = {
+        "zeta_N_per_cm3": rft_fit.zeta / 1e6,
+        "zeta_table_N_per_cm3": mat.zeta / 1e6 if mat.rft is not None else None,
+        "rft_r_squared": rft_fit.r_squared,
+        "mpm_friction_coefficient": mpm_fit.friction_coefficient,
+        "mpm_friction_table": mat.continuum.friction_coefficient,
+        "mpm_scale_data_over_model": mpm_fit.scale,
+        "mpm_r_squared": mpm_fit.r_squared,
+        "mpm_trials": len(mpm_fit.trials),
+        "calibration_wall_s": fit_wall,
+        "plate_rows": int(data.depth_m.size),
+    }
+    plate_table = TableResult(
+        {
+            "seed": seed_col,
+            "depth_m": data.depth_m,
+            "dem_force_z_N": data.force_z_N,
+            "rft_force_z_N": np.asarray(rft_plate),
+            "mpm_force_z_N": np.asarray(mpm_fit.predicted_force_z_N),
+        },
+        {
+            "plate_length_m": plate.length,
+            "plate_width_m": plate.width,
+            "plate_speed_m_s": test.speed,
+            "mpm_cell_size_m": test.mpm_cell_size,
+            "mpm_plate_speed_m_s": test.mpm_speed,
+        },
+    )
+    return _Calibration(rft_mat, mpm_fit.material, fits, plate_table)
+
+
+def _dem_wheels(
+    rows: _WheelRows, case: _WheelCase, mat: Material, seeds: Sequence[int], grains: _Grains
+) -> None:
+    """The DEM wheel on a bed of each seed at 9.81 m/s^2 (the reference the models predict)."""
+    from ..scaling import WheelTest
+    from .dem_scaling import _run_case
+
+    g = 9.81
+    base = WheelTest(body=case.wheel, material=mat, mass=case.load / g, omega=case.omega, gravity=g)
+    for seed in seeds:
+        row, hist = _run_case(
+            base,
+            1.0,
+            int(seed),
+            slip=case.slip,
+            travel=case.travel,
+            grain_diameter=grains.diameter,
+            packing=grains.packing,
+            rows=grains.rows,
+        )
+        rows.add("DEM", True, int(seed), row, row["wall_time_s"])
+        rows.histories.append((f"DEM, seed {seed}", hist))
+
+
+def _model_wheels(
+    rows: _WheelRows, case: _WheelCase, rft_medium: Material, mpm_medium: Material, calibrated: bool
+) -> None:
+    """The RFT steady solve and the MPM wheel with one pair of media (calibrated or the tables)."""
+    from ..locomotion.steady import wheel_steady
+    from ..mpm import run_wheel as mpm_wheel
+    from ..mpm.specs import Drive, Resolution
+
+    radius, weight = case.wheel.radius, case.load
+    duration = case.travel / ((1.0 - case.slip) * case.omega * radius)
+    t = time.perf_counter()
+    st = wheel_steady(case.wheel, rft_medium, case.load, case.slip, omega=case.omega)
+    rows.add(
+        "RFT",
+        calibrated,
+        -1,
+        {
+            "sinkage_over_L": st.sinkage_m / radius,
+            "drawbar_pull_over_Mg": st.drawbar_pull_N / weight,
+            "drive_torque_over_MgL": st.drive_torque_Nm / (weight * radius),
+            "vertical_force_over_Mg": 1.0,
+        },
+        time.perf_counter() - t,
+    )
+    t = time.perf_counter()
+    res = mpm_wheel(
+        case.wheel,
+        mpm_medium,
+        load=case.load,
+        omega=case.omega,
+        slip=case.slip,
+        resolution=Resolution(cell_size=case.mpm_cell_size),
+        drive=Drive(duration=duration),
+    )
+    s = res.summary
+    rows.add(
+        "MPM",
+        calibrated,
+        -1,
+        {
+            "sinkage_over_L": s["sinkage_m"] / radius,
+            "drawbar_pull_over_Mg": s["drawbar_pull_N"] / weight,
+            "drive_torque_over_MgL": s["drive_torque_Nm"] / (weight * radius),
+            "vertical_force_over_Mg": s["force_z_N"] / weight,
+        },
+        time.perf_counter() - t,
+    )
+    rows.histories.append(
+        (f"MPM, {'calibrated' if calibrated else 'table'} mu_s", _mpm_history(res.series, radius, weight))
+    )
 
 
 def dem_calibrated_wheel(
@@ -141,161 +371,15 @@ def dem_calibrated_wheel(
         raise InputError("material", mat.name, "a medium with a [continuum] table (the MPM calibration)")
     load_lammps()
 
-    from ..dem import runs as dem_runs
-    from ..locomotion.steady import wheel_steady
-    from ..mpm import run_wheel as mpm_wheel
-    from ..mpm.specs import Drive, Resolution
-    from ..rft.calibration import fit_rft
-    from ..scaling import WheelTest
-    from .dem_scaling import _run_case
-    from .intrusion import intrusion_forces
-    from .mpm_calibration import fit_mpm_friction
-
-    g = 9.81
-    plate = Plate(plate_length, width)
-    raw = []
-    for seed in seeds:
-        spec = dem_runs.default_bed_spec(
-            plate,
-            depth=plate_depth,
-            direction=math.pi / 2,
-            angle=0.0,
-            grain_diameter=grain_diameter,
-            packing=packing,
-            seed=int(seed),
-        )
-        res = dem_runs.run_intrusion(
-            plate,
-            mat,
-            depth=plate_depth,
-            speed=plate_speed,
-            bed_spec=spec,
-            packing=packing,
-            grain_diameter=grain_diameter,
-        )
-        raw.append((int(seed), np.asarray(res.history["depth_m"]), np.asarray(res.history["force_z_N"])))
-    seed_col, data = _plate_data(raw, plate_depth)
-
-    t0 = time.perf_counter()
-    rft_fit = fit_rft(data, plate_length=plate_length, plate_width=width)
-    rft_mat = mat.with_changes(name=f"{mat.name}-rft-from-dem", rft=rft_fit.rft)
-    rft_plate = intrusion_forces(plate, rft_mat, data.depth_m).columns["force_z_N"]
-    mpm_fit = fit_mpm_friction(
-        data,
-        mat,
-        plate_length=plate_length,
-        plate_width=width,
-        cell_size=mpm_cell_size,
-        speed=mpm_plate_speed,
-    )
-    fit_wall = time.perf_counter() - t0
-    assert mpm_fit.predicted_force_z_N is not None
-    fits = {
-        "zeta_N_per_cm3": rft_fit.zeta / 1e6,
-        "zeta_table_N_per_cm3": mat.zeta / 1e6 if mat.rft is not None else None,
-        "rft_r_squared": rft_fit.r_squared,
-        "mpm_friction_coefficient": mpm_fit.friction_coefficient,
-        "mpm_friction_table": mat.continuum.friction_coefficient,
-        "mpm_scale_data_over_model": mpm_fit.scale,
-        "mpm_r_squared": mpm_fit.r_squared,
-        "mpm_trials": len(mpm_fit.trials),
-        "calibration_wall_s": fit_wall,
-        "plate_rows": int(data.depth_m.size),
-    }
-    plate_table = TableResult(
-        {
-            "seed": seed_col,
-            "depth_m": data.depth_m,
-            "dem_force_z_N": data.force_z_N,
-            "rft_force_z_N": np.asarray(rft_plate),
-            "mpm_force_z_N": np.asarray(mpm_fit.predicted_force_z_N),
-        },
-        {
-            "plate_length_m": plate_length,
-            "plate_width_m": width,
-            "plate_speed_m_s": plate_speed,
-            "mpm_cell_size_m": mpm_cell_size,
-            "mpm_plate_speed_m_s": mpm_plate_speed,
-        },
-    )
-
-    wheel = WheelCircular(radius, width)
-    weight = load
-    mass = load / g
-    base = WheelTest(body=wheel, material=mat, mass=mass, omega=omega, gravity=g)
-    out: dict[str, list[Any]] = {
-        "model": [],
-        "calibrated": [],
-        "seed": [],
-        **{q: [] for q in DIMENSIONLESS},
-        "wall_time_s": [],
-    }
-    histories: list[tuple[str, dict[str, np.ndarray]]] = []
-
-    def add(model: str, calibrated: bool, seed: int, values: dict[str, float], wall: float) -> None:
-        out["model"].append(model)
-        out["calibrated"].append(calibrated)
-        out["seed"].append(seed)
-        for q in DIMENSIONLESS:
-            out[q].append(float(values[q]))
-        out["wall_time_s"].append(wall)
-
-    for seed in seeds:
-        row, hist = _run_case(
-            base,
-            1.0,
-            int(seed),
-            slip=slip,
-            travel=travel,
-            grain_diameter=grain_diameter,
-            packing=packing,
-            rows=rows,
-        )
-        add("DEM", True, int(seed), row, row["wall_time_s"])
-        histories.append((f"DEM, seed {seed}", hist))
-    media = [(rft_mat, mpm_fit.material, True)] + ([(mat, mat, False)] if uncalibrated else [])
-    duration = travel / ((1.0 - slip) * omega * radius)
+    test = _PlateTest(Plate(plate_length, width), plate_depth, plate_speed, mpm_cell_size, mpm_plate_speed)
+    grains = _Grains(grain_diameter, packing, rows)
+    cal = _calibrate(test, mat, _dem_plate_runs(test, mat, seeds, grains))
+    case = _WheelCase(WheelCircular(radius, width), load, omega, slip, travel, mpm_cell_size)
+    out = _WheelRows()
+    _dem_wheels(out, case, mat, seeds, grains)
+    media = [(cal.rft_material, cal.mpm_material, True)] + ([(mat, mat, False)] if uncalibrated else [])
     for rft_medium, mpm_medium, calibrated in media:
-        t = time.perf_counter()
-        st = wheel_steady(wheel, rft_medium, load, slip, omega=omega)
-        add(
-            "RFT",
-            calibrated,
-            -1,
-            {
-                "sinkage_over_L": st.sinkage_m / radius,
-                "drawbar_pull_over_Mg": st.drawbar_pull_N / weight,
-                "drive_torque_over_MgL": st.drive_torque_Nm / (weight * radius),
-                "vertical_force_over_Mg": 1.0,
-            },
-            time.perf_counter() - t,
-        )
-        t = time.perf_counter()
-        res = mpm_wheel(
-            wheel,
-            mpm_medium,
-            load=load,
-            omega=omega,
-            slip=slip,
-            resolution=Resolution(cell_size=mpm_cell_size),
-            drive=Drive(duration=duration),
-        )
-        s = res.summary
-        add(
-            "MPM",
-            calibrated,
-            -1,
-            {
-                "sinkage_over_L": s["sinkage_m"] / radius,
-                "drawbar_pull_over_Mg": s["drawbar_pull_N"] / weight,
-                "drive_torque_over_MgL": s["drive_torque_Nm"] / (weight * radius),
-                "vertical_force_over_Mg": s["force_z_N"] / weight,
-            },
-            time.perf_counter() - t,
-        )
-        histories.append(
-            (f"MPM, {'calibrated' if calibrated else 'table'} mu_s", _mpm_history(res.series, radius, weight))
-        )
+        _model_wheels(out, case, rft_medium, mpm_medium, calibrated)
     meta = {
         "material": mat.name,
         "youngs_modulus_Pa": mat.require_dem().youngs_modulus,
@@ -309,10 +393,10 @@ def dem_calibrated_wheel(
         "travel_m": travel,
         "mpm_cell_size_m": mpm_cell_size,
         "summary_window": "late half of each run (DEM, MPM); steady solve (RFT)",
-        **{f"fit_{k}": v for k, v in fits.items()},
+        **{f"fit_{k}": v for k, v in cal.fits.items()},
     }
-    wheels = TableResult({k: np.asarray(v) for k, v in out.items()}, meta)
-    return CalibratedWheelResult(plate_table, fits, wheels, histories)
+    wheels = TableResult({k: np.asarray(v) for k, v in out.columns.items()}, meta)
+    return CalibratedWheelResult(cal.plate, cal.fits, wheels, out.histories)
 
 
 def plot_calibrated_wheel(result: CalibratedWheelResult) -> Any:

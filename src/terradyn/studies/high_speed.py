@@ -246,6 +246,90 @@ def _steady_run(
     return run.steady_summary(revolutions=average_revolutions)
 
 
+@dataclass(frozen=True)
+class _RunOptions:
+    """What every run of a sweep shares: g [m/s^2], the initial forward speed [m/s], the spin-up rate
+    [rad/s^2] (None: spin applied at t = 0) and the revolutions settled and then averaged."""
+
+    gravity: float
+    initial_velocity: float
+    ramp: float | None
+    settle_revolutions: float
+    average_revolutions: float
+
+    def steady(self, wheel: HighSpeedWheel, mat: Material, model: str, omega: float) -> dict[str, float]:
+        """The steady summary of one run of ``model`` at spin ``omega`` [rad/s]."""
+        return _steady_run(
+            wheel,
+            mat,
+            model,
+            omega,
+            gravity=self.gravity,
+            initial_velocity=self.initial_velocity,
+            ramp=self.ramp,
+            settle_revolutions=self.settle_revolutions,
+            average_revolutions=self.average_revolutions,
+        )
+
+
+def _model_names(models: Sequence[str]) -> list[str]:
+    """``models`` as lower-case names, each one of the terrain models the dynamics take."""
+    from ..models import model_names
+
+    allowed = model_names(use="dynamics")
+    names = [str(m).strip().lower() for m in models]
+    if not names or any(m not in allowed for m in names):
+        raise InputError("models", models, f"one or more of {', '.join(allowed)}")
+    return names
+
+
+def _sweep_row(name: str, omega: float, s: dict[str, float], ell: float, g: float) -> dict[str, Any]:
+    """One row of the sweep table: a run's steady figures, as they are and normalised by l and g."""
+    v = s["forward_velocity_m_s"]
+    return {
+        "model": name,
+        "omega_rad_s": omega,
+        "omega_normalised": omega * math.sqrt(ell / g),
+        "forward_velocity_m_s": v,
+        "velocity_normalised": v / math.sqrt(g * ell),
+        "slip": s["slip"],
+        "sinkage_m": s["sinkage_m"],
+        "sinkage_normalised": s["sinkage_m"] / ell,
+        "drive_torque_Nm": s["drive_torque_Nm"],
+        "froude": 0.5 * ell * omega**2 / g,
+    }
+
+
+def _sweep_models(
+    wheel: HighSpeedWheel,
+    mat: Material,
+    names: list[str],
+    w: np.ndarray,
+    options: _RunOptions,
+    slip_margin: float,
+    progress: Callable[[int, int], None] | None,
+) -> tuple[dict[str, list[Any]], dict[str, dict[str, Any]]]:
+    """Every model at every spin ``w`` [rad/s] (``progress(done, total)`` before each run): the table's
+    columns and each model's slip onset (:func:`slip_onset`)."""
+    ell, g = wheel.outer_diameter, options.gravity
+    rows: dict[str, list[Any]] = {}
+    onsets: dict[str, dict[str, Any]] = {}
+    done, total = 0, len(names) * len(w)
+    for name in names:
+        slips, sinks = [], []
+        for omega in w:
+            if progress is not None:
+                progress(done, total)
+            done += 1
+            s = options.steady(wheel, mat, name, float(omega))
+            slips.append(s["slip"])
+            sinks.append(s["sinkage_m"])
+            for key, value in _sweep_row(name, omega, s, ell, g).items():
+                rows.setdefault(key, []).append(value)
+        onsets[name] = slip_onset(w, slips, sinks, outer_diameter=ell, gravity=g, slip_margin=slip_margin)
+    return rows, onsets
+
+
 def high_speed_sweep(
     *,
     material: str | Material = "poppy-cp",
@@ -303,12 +387,7 @@ def high_speed_sweep(
         raise InputError("wheel", type(wheel).__name__, "a HighSpeedWheel")
     g = check_positive("gravity", gravity)
     mat = _material(material, g, medium_follows_gravity)
-    from ..models import model_names
-
-    allowed = model_names(use="dynamics")
-    names = [str(m).strip().lower() for m in models]
-    if not names or any(m not in allowed for m in names):
-        raise InputError("models", models, f"one or more of {', '.join(allowed)}")
+    names = _model_names(models)
     ell = wheel.outer_diameter
     w = _omegas(omegas, reduced, ell, g)
     check_finite("initial_velocity", initial_velocity)
@@ -316,57 +395,8 @@ def high_speed_sweep(
         settle_revolutions = 3.0 if reduced else 6.0
     check_positive("settle_revolutions", settle_revolutions, allow_zero=True)
     check_positive("average_revolutions", average_revolutions)
-    rows: dict[str, list[Any]] = {
-        k: []
-        for k in (
-            "model",
-            "omega_rad_s",
-            "omega_normalised",
-            "forward_velocity_m_s",
-            "velocity_normalised",
-            "slip",
-            "sinkage_m",
-            "sinkage_normalised",
-            "drive_torque_Nm",
-            "froude",
-        )
-    }
-    onsets: dict[str, dict[str, Any]] = {}
-    done, total = 0, len(names) * len(w)
-    for name in names:
-        slips, sinks = [], []
-        for omega in w:
-            if progress is not None:
-                progress(done, total)
-            done += 1
-            s = _steady_run(
-                wheel,
-                mat,
-                name,
-                float(omega),
-                gravity=g,
-                initial_velocity=initial_velocity,
-                ramp=ramp,
-                settle_revolutions=settle_revolutions,
-                average_revolutions=average_revolutions,
-            )
-            slips.append(s["slip"])
-            sinks.append(s["sinkage_m"])
-            v = s["forward_velocity_m_s"]
-            for key, value in (
-                ("model", name),
-                ("omega_rad_s", omega),
-                ("omega_normalised", omega * math.sqrt(ell / g)),
-                ("forward_velocity_m_s", v),
-                ("velocity_normalised", v / math.sqrt(g * ell)),
-                ("slip", s["slip"]),
-                ("sinkage_m", s["sinkage_m"]),
-                ("sinkage_normalised", s["sinkage_m"] / ell),
-                ("drive_torque_Nm", s["drive_torque_Nm"]),
-                ("froude", 0.5 * ell * omega**2 / g),
-            ):
-                rows[key].append(value)
-        onsets[name] = slip_onset(w, slips, sinks, outer_diameter=ell, gravity=g, slip_margin=slip_margin)
+    options = _RunOptions(g, initial_velocity, ramp, settle_revolutions, average_revolutions)
+    rows, onsets = _sweep_models(wheel, mat, names, w, options, slip_margin, progress)
     meta = {
         "study": "high-speed slip onset",
         "material": mat.name,

@@ -24,7 +24,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -33,6 +33,7 @@ from ..errors import InputError, SolverError, check_length, check_positive
 from ..materials import Material
 
 if TYPE_CHECKING:
+    from ..geometry import Plate
     from ..mpm.specs import Bed, Resolution
 
 __all__ = ["MPMFrictionFit", "fit_mpm_friction", "poisson_ratio_for_stability"]
@@ -95,6 +96,123 @@ def _groups(data: Any) -> list[tuple[float, float, np.ndarray]]:
     ]
 
 
+@dataclass(frozen=True)
+class _PlateRun:
+    """The MPM plate test the fit repeats: ``run`` (:func:`terradyn.mpm.run_intrusion` or a stand-in),
+    the plate, the base medium, ``speed`` [m/s] and the bed and resolution specs."""
+
+    run: Callable[..., Any]
+    plate: Plate
+    material: Material
+    speed: float
+    bed: Bed
+    resolution: Resolution
+
+
+@dataclass(eq=False)
+class _ScaleAt:
+    """k(mu_s), the least-squares data/model scale of the plate ``force`` [N] at ``depth`` [m] (rows
+    grouped by orientation, :func:`_groups`); keeps every (mu_s, k) in ``trials``."""
+
+    plate_run: _PlateRun
+    depth: np.ndarray
+    force: np.ndarray
+    groups: list[tuple[float, float, np.ndarray]]
+    max_trials: int
+    progress: Callable[[int, int], None] | None
+    trials: list[tuple[float, float]] = field(default_factory=list)
+
+    def predicted(self, mu: float) -> np.ndarray:
+        """The MPM force [N] at each data row at friction ``mu``: one run per orientation, interpolated
+        to the data's depths (the Poisson ratio raised if stability needs it)."""
+        p, depth = self.plate_run, self.depth
+        base = p.material.continuum
+        assert base is not None
+        nu = max(base.poisson_ratio, poisson_ratio_for_stability(mu))
+        predicted = np.zeros_like(self.force)
+        for angle, direction, rows in self.groups:
+            res = p.run(
+                p.plate, p.material, depth=float(depth[rows].max()), angle=angle, direction=direction,
+                speed=p.speed, bed=p.bed, resolution=p.resolution, friction_coefficient=mu, poisson_ratio=nu,
+            )  # fmt: skip
+            df = res.to_dataframe()
+            order = np.argsort(df["depth_m"].to_numpy())
+            d_run = df["depth_m"].to_numpy()[order]
+            f_run = df["force_z_N"].to_numpy()[order]
+            if depth[rows].max() > d_run.max() + 1e-9:
+                raise SolverError(
+                    f"the MPM run reached {d_run.max():.4g} m, short of the data's {depth[rows].max():.4g} m"
+                )
+            predicted[rows] = np.interp(depth[rows], d_run, f_run)
+        return predicted
+
+    def __call__(self, mu: float) -> tuple[np.ndarray, float]:
+        """The predicted forces [N] at ``mu`` and their scale k (a trial, reported to ``progress``)."""
+        predicted = self.predicted(mu)
+        denom = float(predicted @ predicted)
+        if denom <= 0:
+            raise SolverError(f"the MPM plate carries no force at mu_s = {mu:.4g}")
+        k = float(self.force @ predicted) / denom
+        self.trials.append((mu, k))
+        if self.progress is not None:
+            self.progress(len(self.trials), self.max_trials)
+        return predicted, k
+
+
+def _solve_unit_scale(
+    model_at: _ScaleAt, mu0: float, bounds: tuple[float, float], tolerance: float
+) -> tuple[float, np.ndarray, float, bool]:
+    """mu_s with k(mu_s) = 1 within ``tolerance``, starting at ``mu0`` in ``bounds``: bracket, then
+    Illinois regula falsi in ln mu_s. Returns mu_s, its predicted forces [N], k and convergence."""
+    low, high = bounds
+    max_trials, trials = model_at.max_trials, model_at.trials
+    best_mu, (best_pred, best_k) = mu0, model_at(mu0)
+    converged = abs(best_k - 1.0) <= tolerance
+    if converged:
+        return best_mu, best_pred, best_k, converged
+    # bracket: k rises with mu_s; step by the data/model ratio (force roughly ~ mu_s^2)
+    a, ka = mu0, best_k
+    b = min(max(mu0 * best_k**0.5, low), high)
+    pb, kb = model_at(b)
+    while (ka - 1.0) * (kb - 1.0) > 0 and len(trials) < max_trials:
+        if b in (low, high):
+            raise SolverError(
+                f"no mu_s in [{low:g}, {high:g}] fits the data: the data/model scale is {kb:.3g} "
+                f"at mu_s = {b:.4g}"
+            )
+        a, ka = b, kb
+        b = min(max(b * kb**0.5, low), high)
+        pb, kb = model_at(b)
+    best_mu, best_pred, best_k = b, pb, kb
+    ga, gb = math.log(ka), math.log(kb)
+    la, lb = math.log(a), math.log(b)
+    while abs(best_k - 1.0) > tolerance and len(trials) < max_trials:
+        lc = lb - gb * (lb - la) / (gb - ga)
+        pc, kc = model_at(math.exp(lc))
+        gc = math.log(kc)
+        best_mu, best_pred, best_k = math.exp(lc), pc, kc
+        if gc * gb < 0:
+            la, ga = lb, gb
+        else:
+            ga *= 0.5  # Illinois: halve the value at the end that stays
+        lb, gb = lc, gc
+    return best_mu, best_pred, best_k, abs(best_k - 1.0) <= tolerance
+
+
+def _fitted_medium(material: Material, mu: float) -> Material:
+    """``material`` with continuum friction ``mu`` (mu_2 keeps its step above mu_s) and the Poisson
+    ratio the bed's stability needs."""
+    base = material.continuum
+    assert base is not None
+    nu = max(base.poisson_ratio, poisson_ratio_for_stability(mu))
+    mu2 = max(base.friction_coefficient_2 - base.friction_coefficient + mu, mu)
+    return material.with_changes(
+        continuum=dataclasses.replace(
+            base, friction_coefficient=mu, friction_coefficient_2=mu2, poisson_ratio=nu
+        )
+    )
+
+
 def fit_mpm_friction(
     data: Any,
     material: Material,
@@ -142,93 +260,29 @@ def fit_mpm_friction(
         from ..mpm import run_intrusion
 
         run = run_intrusion
-    runner: Callable[..., Any] = run
     depth = np.asarray(data.depth_m, dtype=float)
     force = np.asarray(data.force_z_N, dtype=float)
     if np.any(depth <= 0):
         raise InputError("depth_m", float(depth.min()), "depths > 0 [m] (below the free surface)")
     if not np.any(np.abs(force) > 0):
         raise InputError("force_z_N", 0.0, "some non-zero forces")
-    groups = _groups(data)
     base = material.continuum
-    trials: list[tuple[float, float]] = []
-
-    def model_at(mu: float) -> tuple[np.ndarray, float]:
-        nu = max(base.poisson_ratio, poisson_ratio_for_stability(mu))
-        predicted = np.zeros_like(force)
-        for angle, direction, rows in groups:
-            res = runner(
-                plate, material, depth=float(depth[rows].max()), angle=angle, direction=direction,
-                speed=speed, bed=bed, resolution=resolution, friction_coefficient=mu, poisson_ratio=nu,
-            )  # fmt: skip
-            df = res.to_dataframe()
-            order = np.argsort(df["depth_m"].to_numpy())
-            d_run = df["depth_m"].to_numpy()[order]
-            f_run = df["force_z_N"].to_numpy()[order]
-            if depth[rows].max() > d_run.max() + 1e-9:
-                raise SolverError(
-                    f"the MPM run reached {d_run.max():.4g} m, short of the data's {depth[rows].max():.4g} m"
-                )
-            predicted[rows] = np.interp(depth[rows], d_run, f_run)
-        denom = float(predicted @ predicted)
-        if denom <= 0:
-            raise SolverError(f"the MPM plate carries no force at mu_s = {mu:.4g}")
-        k = float(force @ predicted) / denom
-        trials.append((mu, k))
-        if progress is not None:
-            progress(len(trials), max_trials)
-        return predicted, k
-
+    plate_run = _PlateRun(run, plate, material, speed, bed, resolution)
+    model_at = _ScaleAt(plate_run, depth, force, _groups(data), max_trials, progress)
     mu0 = min(max(base.friction_coefficient, low), high)
-    best_mu, (best_pred, best_k) = mu0, model_at(mu0)
-    converged = abs(best_k - 1.0) <= tolerance
-    if not converged:
-        # bracket: k rises with mu_s; step by the data/model ratio (force roughly ~ mu_s^2)
-        a, ka = mu0, best_k
-        b = min(max(mu0 * best_k**0.5, low), high)
-        pb, kb = model_at(b)
-        while (ka - 1.0) * (kb - 1.0) > 0 and len(trials) < max_trials:
-            if b in (low, high):
-                raise SolverError(
-                    f"no mu_s in [{low:g}, {high:g}] fits the data: the data/model scale is {kb:.3g} "
-                    f"at mu_s = {b:.4g}"
-                )
-            a, ka = b, kb
-            b = min(max(b * kb**0.5, low), high)
-            pb, kb = model_at(b)
-        best_mu, best_pred, best_k = b, pb, kb
-        ga, gb = math.log(ka), math.log(kb)
-        la, lb = math.log(a), math.log(b)
-        while abs(best_k - 1.0) > tolerance and len(trials) < max_trials:
-            lc = lb - gb * (lb - la) / (gb - ga)
-            pc, kc = model_at(math.exp(lc))
-            gc = math.log(kc)
-            best_mu, best_pred, best_k = math.exp(lc), pc, kc
-            if gc * gb < 0:
-                la, ga = lb, gb
-            else:
-                ga *= 0.5  # Illinois: halve the value at the end that stays
-            lb, gb = lc, gc
-        converged = abs(best_k - 1.0) <= tolerance
+    best_mu, best_pred, best_k, converged = _solve_unit_scale(model_at, mu0, (low, high), tolerance)
     residual = force - best_pred
     ss_tot = float(np.sum((force - force.mean()) ** 2))
     r2 = 1.0 - float(residual @ residual) / ss_tot if ss_tot > 0 else 1.0
-    nu = max(base.poisson_ratio, poisson_ratio_for_stability(best_mu))
-    mu2 = max(base.friction_coefficient_2 - base.friction_coefficient + best_mu, best_mu)
-    fitted = material.with_changes(
-        continuum=dataclasses.replace(
-            base, friction_coefficient=best_mu, friction_coefficient_2=mu2, poisson_ratio=nu
-        )
-    )
     return MPMFrictionFit(
         friction_coefficient=best_mu,
         friction_angle=math.asin(min(best_mu, 1.0)),
-        poisson_ratio=nu,
+        poisson_ratio=max(base.poisson_ratio, poisson_ratio_for_stability(best_mu)),
         scale=best_k,
         rms_residual_N=float(np.sqrt(np.mean(residual**2))),
         r_squared=r2,
-        trials=tuple(trials),
-        material=fitted,
+        trials=tuple(model_at.trials),
+        material=_fitted_medium(material, best_mu),
         cell_size=resolution.cell_size,
         converged=converged,
         predicted_force_z_N=best_pred,

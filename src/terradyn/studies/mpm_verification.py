@@ -196,6 +196,123 @@ def _intercept_stderr(s: np.ndarray, q: np.ndarray, slope: float, intercept: flo
     return math.sqrt(var)
 
 
+@dataclass(frozen=True)
+class _FootingRun:
+    """The MPM footing run every grid phase repeats: ``run`` (:func:`terradyn.mpm.run_intrusion` or a
+    stand-in), the medium, the base, footing width B [m], cell size [m], reading settlement [m],
+    speed [m/s], bed and resolution specs, and the continuum's mu_s and Poisson ratio."""
+
+    run: Callable[..., Any]
+    material: Any
+    base: FootingBase
+    width: float
+    cell_size: float
+    settlement: float
+    speed: float
+    bed: Bed
+    resolution: Resolution
+    friction_coefficient: float
+    poisson_ratio: float
+
+
+def _check_grid_phases(grid_phases: int, resolution: Resolution) -> None:
+    """One :class:`InputError` line unless ``grid_phases`` divides the points per cell along an axis."""
+    ppc = resolution.particles_per_cell
+    if not isinstance(grid_phases, int) or grid_phases < 1 or ppc % grid_phases != 0:
+        raise InputError(
+            "grid_phases",
+            grid_phases,
+            f"a divisor of the points per cell along an axis ({ppc})",
+            "each phase moves the grid by a whole number of point rows",
+        )
+
+
+def _unit_weight(mat: Any, bed: Bed) -> float:
+    """gamma = rho g [N/m^3] of the bed as it is made (a consolidated bed: 1.02 critical density by
+    default), or of the density the bed is given."""
+    from ..mpm.model import resolve_model
+    from ..mpm.solver import initial_density
+
+    model = resolve_model(mat)
+    rho = (
+        bed.density
+        if bed.density is not None
+        else initial_density(model.bulk_density, model.critical_density, bed.packing)
+    )
+    return rho * bed.gravity
+
+
+def _phase_reading(
+    footing: _FootingRun,
+    k: int,
+    grid_phases: int,
+    gamma: float,
+    progress: Callable[[float, float], None] | None,
+) -> tuple[Any, ...]:
+    """Grid phase ``k`` of ``grid_phases`` (the grid moved by k / n of a cell against the surface):
+    ``(surface offset, run result, *reading)`` with the reading of :func:`_read`; its progress is its
+    share of the whole."""
+    from ..geometry import Plate
+    from ..mpm.specs import Outputs, Stroke
+
+    b, h, settlement = footing.width, footing.cell_size, footing.settlement
+    out_of_plane = 0.01
+    offset = (footing.bed.surface_offset + k / grid_phases) % 1.0
+    phase_progress = None
+    if progress is not None:
+
+        def phase_progress(done: float, total: float) -> None:
+            progress(k * total + done, grid_phases * total)
+
+    res = footing.run(
+        Plate(length=b, width=out_of_plane),
+        footing.material,
+        depth=1.5 * settlement,
+        speed=footing.speed,
+        bed=footing.bed.replace(surface_offset=offset),
+        resolution=footing.resolution.replace(cell_size=h),
+        outputs=Outputs(record_spacing=min(0.25 * h, 0.02 * settlement), progress=phase_progress),
+        stroke=Stroke(averaging_window=0.2 * settlement),
+        friction_coefficient=footing.friction_coefficient,
+        poisson_ratio=footing.poisson_ratio,
+        surface_friction=ROUGH_FRICTION if footing.base is FootingBase.rough else 0.0,
+    )
+    return (offset, res, *_read(res, b, out_of_plane, settlement, gamma))
+
+
+def _footing_result(
+    footing: _FootingRun, readings: list[tuple[Any, ...]], phi_deg: float, gamma: float
+) -> StripFootingResult:
+    """The phases' mean readings (the first phase's curve and final state) and the references."""
+    first = readings[0]
+    res = first[1]
+    n_phase = [r[2] for r in readings]
+    stderr = math.sqrt(sum(r[4] ** 2 for r in readings)) / len(readings)
+    resolution = footing.resolution
+    return StripFootingResult(
+        friction_angle_deg=phi_deg,
+        base=footing.base,
+        width_m=footing.width,
+        cell_size_m=footing.cell_size,
+        N_gamma_mpm=float(np.mean(n_phase)),
+        N_gamma_raw=float(np.mean([r[3] for r in readings])),
+        N_gamma_stderr=stderr,
+        pressure_Pa=float(np.mean([r[5] for r in readings])),
+        settlement_m=footing.settlement,
+        embedment_slope=float(np.mean([r[6] for r in readings])),
+        N_q_reduced=_nq_reduced(math.radians(phi_deg)),
+        unit_weight_N_m3=gamma,
+        reference=_reference(phi_deg, footing.base),
+        curve=first[7],
+        phases=tuple((r[0], r[2], r[7]) for r in readings),
+        final_particles=getattr(res, "final_particles", None),
+        final_segments=None if getattr(res, "final_frame", None) is None else res.final_frame["segments"],
+        particles_per_cell=resolution.particles_per_cell,
+        volumetric=resolution.volumetric,
+        flip=resolution.flip,
+    )
+
+
 def strip_footing(
     friction_angle_deg: float,
     base: FootingBase | str = FootingBase.rough,
@@ -221,8 +338,7 @@ def strip_footing(
     pressure steps up each time the base crosses a node line, so the reading depends on where the grid
     lies (docs/mpm.md). ``run`` replaces :func:`terradyn.mpm.run_intrusion` (tests)."""
     from .. import materials
-    from ..geometry import Plate
-    from ..mpm.specs import Bed, Outputs, Resolution, Stroke
+    from ..mpm.specs import Bed, Resolution
 
     bed = Bed() if bed is None else bed
     resolution = Resolution() if resolution is None else resolution
@@ -258,72 +374,8 @@ def strip_footing(
             f"at most {settlement / 2:.4g} m",
             "the reading settlement must span two cells or more",
         )
-    ppc = resolution.particles_per_cell
-    if not isinstance(grid_phases, int) or grid_phases < 1 or ppc % grid_phases != 0:
-        raise InputError(
-            "grid_phases",
-            grid_phases,
-            f"a divisor of the points per cell along an axis ({ppc})",
-            "each phase moves the grid by a whole number of point rows",
-        )
-    from ..mpm.model import resolve_model
-    from ..mpm.solver import initial_density
-
-    model = resolve_model(mat)
-    # the unit weight of the bed as it is made (a consolidated bed: 1.02 critical density by default)
-    rho = (
-        bed.density
-        if bed.density is not None
-        else initial_density(model.bulk_density, model.critical_density, bed.packing)
-    )
-    gamma = rho * bed.gravity
-    out_of_plane = 0.01
-    readings = []
-    for k in range(grid_phases):
-        offset = (bed.surface_offset + k / grid_phases) % 1.0
-        phase_progress = None
-        if progress is not None:
-
-            def phase_progress(done: float, total: float, k: int = k) -> None:
-                progress(k * total + done, grid_phases * total)
-
-        res = run(
-            Plate(length=b, width=out_of_plane),
-            mat,
-            depth=1.5 * settlement,
-            speed=speed,
-            bed=bed.replace(surface_offset=offset),
-            resolution=resolution.replace(cell_size=h),
-            outputs=Outputs(record_spacing=min(0.25 * h, 0.02 * settlement), progress=phase_progress),
-            stroke=Stroke(averaging_window=0.2 * settlement),
-            friction_coefficient=mu,
-            poisson_ratio=nu,
-            surface_friction=ROUGH_FRICTION if base is FootingBase.rough else 0.0,
-        )
-        readings.append((offset, res, *_read(res, b, out_of_plane, settlement, gamma)))
-    first = readings[0]
-    res = first[1]
-    n_phase = [r[2] for r in readings]
-    stderr = math.sqrt(sum(r[4] ** 2 for r in readings)) / grid_phases
-    return StripFootingResult(
-        friction_angle_deg=phi_deg,
-        base=base,
-        width_m=b,
-        cell_size_m=h,
-        N_gamma_mpm=float(np.mean(n_phase)),
-        N_gamma_raw=float(np.mean([r[3] for r in readings])),
-        N_gamma_stderr=stderr,
-        pressure_Pa=float(np.mean([r[5] for r in readings])),
-        settlement_m=settlement,
-        embedment_slope=float(np.mean([r[6] for r in readings])),
-        N_q_reduced=_nq_reduced(phi),
-        unit_weight_N_m3=gamma,
-        reference=_reference(phi_deg, base),
-        curve=first[7],
-        phases=tuple((r[0], r[2], r[7]) for r in readings),
-        final_particles=getattr(res, "final_particles", None),
-        final_segments=None if getattr(res, "final_frame", None) is None else res.final_frame["segments"],
-        particles_per_cell=resolution.particles_per_cell,
-        volumetric=resolution.volumetric,
-        flip=resolution.flip,
-    )
+    _check_grid_phases(grid_phases, resolution)
+    gamma = _unit_weight(mat, bed)
+    footing = _FootingRun(run, mat, base, b, h, settlement, speed, bed, resolution, mu, nu)
+    readings = [_phase_reading(footing, k, grid_phases, gamma, progress) for k in range(grid_phases)]
+    return _footing_result(footing, readings, phi_deg, gamma)
