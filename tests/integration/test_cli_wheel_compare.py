@@ -10,7 +10,7 @@ SMALL = ("--load", "5", "--radius", "0.05", "--width", "0.03")
 
 
 def test_compare_prints_one_row_per_model_with_the_same_keys(run_cli):
-    code, out, err = run_cli("wheel", "compare", "--models", "rft,wr,rft3d", "--slip", "0.3", *SMALL,
+    code, out, err = run_cli("wheel", "compare", "--model", "rft,wr,rft3d", "--slip", "0.3", *SMALL,
                              "--dynamics", "--format", "json")  # fmt: skip
     assert code == 0, err
     rows = json.loads(out)
@@ -24,7 +24,7 @@ def test_compare_prints_one_row_per_model_with_the_same_keys(run_cli):
 
 
 def test_compare_refuses_an_unknown_model_in_one_line(run_cli):
-    code, _, err = run_cli("wheel", "compare", "--models", "rft,rft9", "--slip", "0.3", *SMALL)
+    code, _, err = run_cli("wheel", "compare", "--model", "rft,rft9", "--slip", "0.3", *SMALL)
     assert code == 1  # bad input (README: exit codes)
-    assert "--models" in err and "rft9" in err and "Traceback" not in err
+    assert "--model" in err and "rft9" in err and "Traceback" not in err
     assert len(err.strip().splitlines()) == 1

@@ -13,6 +13,7 @@ from terradyn import materials
 from terradyn.errors import SolverError
 from terradyn.geometry import WheelCircular, WheelGrousered
 from terradyn.geometry3d import wheel_cylinder, wheel_grousered
+from terradyn.geometry3d.kinematics import rotations_y
 from terradyn.locomotion import _steady_kernels as k
 from terradyn.locomotion import wheel_steady
 from terradyn.rft import RFTModel
@@ -128,7 +129,7 @@ def test_facet_order_prefixes_hold_every_submerged_facet(compiled):
     mesh, _ = _mesh_pair()[1]
     fn = k.rft3d_facet_order_kernel if compiled else k.rft3d_facet_order_kernel.py_func
     thetas = np.array([0.0, 0.2, 0.4])
-    rotations = steady3d._rotations_y(thetas)
+    rotations = rotations_y(thetas)
     low, high, surface = 0.0, 0.14, 0.0
     c, _n, a, counts = fn(*mesh.kernel_arrays, rotations, surface, low, high)
     assert np.all(np.diff(counts) <= 0) and counts[0] == a.size

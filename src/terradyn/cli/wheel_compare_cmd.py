@@ -20,9 +20,9 @@ from .wheel_options import WheelShape, shape_flags, wheel_body
 
 
 def compare(
-    models: str = typer.Option(
+    model: str = typer.Option(
         "rft,drft,wong-reece",
-        "--models",
+        "--model",
         help="Models, comma separated: " + ", ".join(model_names(use="run-wheel")) + ".",
     ),
     material: str = MATERIAL,
@@ -52,10 +52,10 @@ def compare(
     from ..mpm import Resolution
 
     out_path = out_file("--out", out)
-    names = [m.strip() for m in models.split(",") if m.strip()]
+    names = [m.strip() for m in model.split(",") if m.strip()]
     if not names:
-        raise InputError("--models", models, "one or more of " + ", ".join(model_names(use="run-wheel")))
-    entries = [model_entry(n, use="run-wheel", field="--models") for n in names]
+        raise InputError("--model", model, "one or more of " + ", ".join(model_names(use="run-wheel")))
+    entries = [model_entry(n, use="run-wheel", field="--model") for n in names]
     body = wheel_body(shape, width, shape_flags(shape, sizes))
     case = WheelCase(body, materials.get(material), load=load, slip=slip, omega=omega, duration=duration)
     settings: dict[str, Any] = {
