@@ -1,5 +1,5 @@
 """Compare two report folders written by ``terradyn reproduce`` row by row: findings (text and verdict),
-metrics, settings and tables; timings, code fingerprints, versions and figure bytes are left out.
+metrics, settings and tables; wall times, code fingerprints, versions and figure bytes are left out.
 
 Run: python scripts/compare_reports.py BEFORE_FOLDER AFTER_FOLDER   (exit 1 when a row differs)
 """
@@ -11,6 +11,15 @@ import sys
 from pathlib import Path
 
 COMPARED = ("status", "settings", "metrics", "findings", "tables")
+
+
+def _untimed(value: object) -> object:
+    """``value`` without wall-clock fields (keys naming a wall time), which differ run to run."""
+    if isinstance(value, dict):
+        return {k: _untimed(v) for k, v in value.items() if "wall_time" not in k}
+    if isinstance(value, list):
+        return [_untimed(v) for v in value]
+    return value
 
 
 def rows(folder: Path) -> dict[str, dict]:
@@ -27,7 +36,7 @@ def main(before: Path, after: Path) -> int:
             print(f"{name}: only in {'after' if name in b else 'before'}")
             differ += 1
             continue
-        bad = [k for k in COMPARED if a[name].get(k) != b[name].get(k)]
+        bad = [k for k in COMPARED if _untimed(a[name].get(k)) != _untimed(b[name].get(k))]
         if bad:
             differ += 1
             print(f"{name}: differs in {', '.join(bad)}")
