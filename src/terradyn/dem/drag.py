@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import InputError, check_finite, check_positive, check_range
 from ..materials import Material
-from .bed import BODY_TYPE, BedKind, BedSpec, Packing, check_speed, prepare_bed
+from .bed import BODY_TYPE, Bed, BedKind, BedSpec, Packing, check_speed
 from .intruders import MeshIntruder, body_spheres, rotated_extent
 from .runs import (
     HISTORY_KEYS,
@@ -34,6 +34,7 @@ from .runs import (
     _body_fixes,
     _dem_dict,
     _recorder,
+    _settled_bed,
     as_intruder,
     newton_setting,
     run_chunks,
@@ -86,6 +87,85 @@ def drag_bed_spec(body: Any, *, depth: float, distance: float, grain_diameter: f
 DRAG_HOOKS = RunHooks(INTRUSION_HOOKS.record_row, INTRUSION_HOOKS.pose, "x_m")
 
 
+@dataclass(frozen=True)
+class _Drag:
+    """The checked drag: reference point ``depth`` [m] below the surface, ``distance`` [m] and
+    ``speed`` [m/s] along +x, body ``angle`` [rad]."""
+
+    depth: float
+    distance: float
+    speed: float
+    angle: float
+
+    @property
+    def start(self) -> tuple[float, float, float]:
+        """The start pose: ``distance / 2`` behind x = 0 at ``depth``, rotated by ``angle``."""
+        return (-0.5 * self.distance, -self.depth, self.angle)
+
+
+def _place_body(bed: Bed, body: Any, drag: _Drag) -> tuple[np.ndarray, int, int]:
+    """Add the body's spheres at the start to the bed and delete every grain that overlaps them;
+    returns the spheres, the bed's atom count before and the grains left. One :class:`InputError`
+    line for a bed too short for the path or a body too near the floor."""
+    lmp, d = bed.lmp, bed.dem.grain_diameter
+    pts, d_w = body_spheres(body, d, drag.start, bed.surface, (bed.box[2], bed.box[3]), periodic=True)
+    if pts[:, 0].min() < bed.box[0] + d or pts[:, 0].max() + drag.distance > bed.box[1] - d:
+        raise InputError("bed length", bed.box[1] - bed.box[0], "a bed longer than the body's path")
+    if pts[:, 2].min() < 2.0 * d:
+        raise InputError("depth", drag.depth, "a body clear of the floor by two grains")
+    n_bed = int(lmp.get_natoms())
+    _add_atoms(lmp, pts, n_bed)
+    r_max = 0.5 * d * (1.0 + bed.dem.diameter_spread)
+    for line in (
+        "group body clear",
+        f"group body type {BODY_TYPE}",
+        f"set type {BODY_TYPE} diameter {d_w:.17g}",
+        f"set type {BODY_TYPE} density {bed.dem.grain_density:.17g}",
+        # every grain that overlaps a body sphere goes (it would be inside the body)
+        f"delete_atoms overlap {0.5 * d_w + r_max:.17g} grains body",
+        "reset_timestep 0",
+    ):
+        lmp.command(line)
+    return pts, n_bed, int(lmp.get_natoms()) - len(pts)
+
+
+def _settle_around_body(bed: Bed, settle_time: float | None) -> None:
+    """Let the bed settle around the still body for ``settle_time`` [s] (default
+    :data:`SETTLE_TIMES` free-fall times sqrt(d / g)); the step count restarts after."""
+    lmp, d, dt = bed.lmp, bed.dem.grain_diameter, bed.dt
+    t_settle = SETTLE_TIMES * math.sqrt(d / bed.spec.gravity) if settle_time is None else settle_time
+    check_positive("settle_time", t_settle, allow_zero=True)
+    if t_settle > 0:
+        lmp.command(f"run {max(1, round(t_settle / dt))}")
+    lmp.command("reset_timestep 0")
+
+
+def _drag_params(
+    bed: Bed, body: Any, material: Material, drag: _Drag, pts: np.ndarray, n_grains: int,
+    record_spacing: float | None,
+) -> dict[str, Any]:  # fmt: skip
+    """The run's parameters as the chunked run takes them: motion, chunking (a history row per
+    ``record_spacing`` [m] of travel, default a tenth of a grain), bed and grains."""
+    lmp, d, dt, speed, start = bed.lmp, bed.dem.grain_diameter, bed.dt, drag.speed, drag.start
+    spacing = record_spacing if record_spacing is not None else 0.1 * d
+    if not spacing > 0 or not math.isfinite(spacing):
+        raise InputError("record_spacing", spacing, "a travel > 0 [m] per history row")
+    chunk = max(10, round(spacing / (speed * dt)))
+    rows = max(1, math.ceil(math.ceil(drag.distance / (speed * dt)) / chunk))
+    centroid = pts[:, [0, 2]].mean(axis=0)
+    ref0 = np.array([start[0], bed.surface + start[1]])
+    width = bed.thickness
+    return {
+        "run": "dem drag", "velocity": [speed, 0.0], "ref_offset": (ref0 - centroid).tolist(),
+        "start": list(start), "surface": bed.surface, "chunk": chunk, "rows": rows, "dt": dt,
+        "speed": speed, "depth": drag.depth, "direction": 0.0, "angle": drag.angle, "width": width,
+        "force_scale": body.width / width, "grain_diameter": d, "body_spheres": len(pts),
+        "grain_count": n_grains, "bed": bed.summary(), "bed_kind": BedKind.SLAB.value,
+        "gravity": bed.spec.gravity, "material": material.name, "dem": _dem_dict(bed), "box": list(bed.box),
+        "newton": newton_setting(lmp),
+    }  # fmt: skip
+
+
 def run_drag(
     body: Any,
     material: Material,
@@ -126,65 +206,20 @@ def run_drag(
                                      packing=packing, seed=seed)  # fmt: skip
     if spec.kind is not BedKind.SLAB:
         raise InputError("bed_spec.kind", spec.kind.value, "'slab' (a drag runs in a slab bed)")
-
-    def settle_progress(t: float, f: float) -> None:
-        if progress is not None:
-            progress(0.0, 0.25 * f)
-
-    bed = prepare_bed(material, spec, progress=settle_progress)
+    drag = _Drag(depth, distance, speed, angle)
+    bed = _settled_bed(material, spec, progress, 0.25)
     lmp = bed.lmp
     try:
-        d = bed.dem.grain_diameter
-        start = (-0.5 * distance, -depth, angle)
-        pts, d_w = body_spheres(body, d, start, bed.surface, (bed.box[2], bed.box[3]), periodic=True)
-        if pts[:, 0].min() < bed.box[0] + d or pts[:, 0].max() + distance > bed.box[1] - d:
-            raise InputError("bed length", bed.box[1] - bed.box[0], "a bed longer than the body's path")
-        if pts[:, 2].min() < 2.0 * d:
-            raise InputError("depth", depth, "a body clear of the floor by two grains")
-        n_bed = int(lmp.get_natoms())
-        _add_atoms(lmp, pts, n_bed)
-        r_max = 0.5 * d * (1.0 + bed.dem.diameter_spread)
-        for line in (
-            "group body clear",
-            f"group body type {BODY_TYPE}",
-            f"set type {BODY_TYPE} diameter {d_w:.17g}",
-            f"set type {BODY_TYPE} density {bed.dem.grain_density:.17g}",
-            # every grain that overlaps a body sphere goes (it would be inside the body)
-            f"delete_atoms overlap {0.5 * d_w + r_max:.17g} grains body",
-            "reset_timestep 0",
-        ):
-            lmp.command(line)
-        n_grains = int(lmp.get_natoms()) - len(pts)
-        dt = bed.dt
-        t_settle = SETTLE_TIMES * math.sqrt(d / spec.gravity) if settle_time is None else settle_time
-        check_positive("settle_time", t_settle, allow_zero=True)
-        if t_settle > 0:
-            lmp.command(f"run {max(1, round(t_settle / dt))}")
-        lmp.command("reset_timestep 0")
-        spacing = record_spacing if record_spacing is not None else 0.1 * d
-        if not spacing > 0 or not math.isfinite(spacing):
-            raise InputError("record_spacing", spacing, "a travel > 0 [m] per history row")
-        chunk = max(10, round(spacing / (speed * dt)))
-        rows = max(1, math.ceil(math.ceil(distance / (speed * dt)) / chunk))
-        centroid = pts[:, [0, 2]].mean(axis=0)
-        ref0 = np.array([start[0], bed.surface + start[1]])
-        width = bed.thickness
-        params: dict[str, Any] = {
-            "run": "dem drag", "velocity": [speed, 0.0], "ref_offset": (ref0 - centroid).tolist(),
-            "start": list(start), "surface": bed.surface, "chunk": chunk, "rows": rows, "dt": dt,
-            "speed": speed, "depth": depth, "direction": 0.0, "angle": angle, "width": width,
-            "force_scale": body.width / width, "grain_diameter": d, "body_spheres": len(pts),
-            "grain_count": n_grains, "bed": bed.summary(), "bed_kind": BedKind.SLAB.value,
-            "gravity": spec.gravity, "material": material.name, "dem": _dem_dict(bed), "box": list(bed.box),
-            "newton": newton_setting(lmp),
-        }  # fmt: skip
+        pts, n_bed, n_grains = _place_body(bed, body, drag)
+        _settle_around_body(bed, settle_time)
+        params = _drag_params(bed, body, material, drag, pts, n_grains, record_spacing)
         _body_fixes(lmp, params)
         history: dict[str, list[float]] = {k: [] for k in HISTORY_KEYS}
         recorder = _recorder(body, params, None, None, 0)
 
         def drag_progress(x: float, fraction: float) -> None:
             if progress is not None:
-                progress(x - start[0], 0.25 + 0.75 * (fraction - 0.3) / 0.7)
+                progress(x - drag.start[0], 0.25 + 0.75 * (fraction - 0.3) / 0.7)
 
         run_chunks(lmp, params, history, 0, None, 60.0, drag_progress, None, recorder, DRAG_HOOKS)
     finally:

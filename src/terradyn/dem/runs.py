@@ -236,12 +236,14 @@ class _Placement:
     width: float
 
 
-def _settled_bed(material: Material, spec: BedSpec, progress: Callable[[float, float], None] | None) -> Bed:
-    """Pour and settle the bed of ``spec``; its settling is the first 30 % of ``progress``."""
+def _settled_bed(
+    material: Material, spec: BedSpec, progress: Callable[[float, float], None] | None, share: float = 0.3
+) -> Bed:
+    """Pour and settle the bed of ``spec``; its settling is the first ``share`` of ``progress``."""
 
     def settle_progress(t: float, f: float) -> None:
         if progress is not None:
-            progress(0.0, 0.3 * f)
+            progress(0.0, share * f)
 
     return prepare_bed(material, spec, progress=settle_progress)
 

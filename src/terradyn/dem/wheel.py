@@ -35,7 +35,7 @@ import numpy as np
 from ..errors import InputError, check_finite, check_positive
 from ..geometry import Body
 from ..materials import Material
-from .bed import BODY_TYPE, Bed, BedKind, BedSpec, Packing, prepare_bed
+from .bed import BODY_TYPE, Bed, BedKind, BedSpec, Packing
 from .fields import FieldRecorder, frame_every, rows_between
 from .intruders import MeshIntruder, body_spheres, rotated_extent
 from .runs import (
@@ -43,6 +43,7 @@ from .runs import (
     _add_atoms,
     _dem_dict,
     _mesh_bed,
+    _settled_bed,
     _start_gap,
     as_intruder,
     newton_setting,
@@ -109,6 +110,29 @@ def default_wheel_bed(body: Body | MeshIntruder | TriangleMesh, *, travel: float
                    seed=seed)  # fmt: skip
 
 
+def _bed_gravity(bed: Bed | None, gravity: float | None) -> float:
+    """g [m/s^2] of the run: a prepared bed's own (a ``gravity`` that differs from it is refused), else
+    ``gravity`` (default 9.81)."""
+    if bed is not None:
+        if gravity is not None and not math.isclose(gravity, bed.spec.gravity, rel_tol=1e-12):
+            raise InputError("gravity", gravity, f"the prepared bed's {bed.spec.gravity:g} m/s^2",
+                             "a bed keeps the gravity it settled at; leave gravity out")  # fmt: skip
+        gravity = bed.spec.gravity
+    return check_positive("gravity", 9.81 if gravity is None else gravity)
+
+
+def _field_outputs(
+    snapshot_dir: str | Path | None, snapshot_interval: float | None, frame_count: int
+) -> dict[str, Any]:
+    """The snapshot folder, interval [s] and frame count of a wheel run, checked."""
+    if snapshot_interval is not None:
+        snapshot_interval = check_positive("snapshot_interval", snapshot_interval)
+    if not isinstance(frame_count, int) or not 0 <= frame_count <= 500:
+        raise InputError("frame_count", frame_count, "an integer in [0, 500]")
+    return {"snapshot_dir": None if snapshot_dir is None else Path(snapshot_dir),
+            "snapshot_interval": snapshot_interval, "frame_count": frame_count}  # fmt: skip
+
+
 def run_wheel(
     body: Body | MeshIntruder | TriangleMesh,
     material: Material,
@@ -155,12 +179,7 @@ def run_wheel(
     if isinstance(body, MeshIntruder) and not resume:
         _mesh_bed(bed.spec.kind if bed is not None else BedKind.coerce(kind))
     r = wheel_radius(body)
-    if bed is not None:
-        if gravity is not None and not math.isclose(gravity, bed.spec.gravity, rel_tol=1e-12):
-            raise InputError("gravity", gravity, f"the prepared bed's {bed.spec.gravity:g} m/s^2",
-                             "a bed keeps the gravity it settled at; leave gravity out")  # fmt: skip
-        gravity = bed.spec.gravity
-    gravity = check_positive("gravity", 9.81 if gravity is None else gravity)
+    gravity = _bed_gravity(bed, gravity)
     load = check_positive("load", load)
     omega = check_finite("omega", omega)
     if not omega > 0:
@@ -171,12 +190,7 @@ def run_wheel(
     duration = check_positive("duration", duration)
     if record_interval is not None:
         record_interval = check_positive("record_interval", record_interval)
-    if snapshot_interval is not None:
-        snapshot_interval = check_positive("snapshot_interval", snapshot_interval)
-    if not isinstance(frame_count, int) or not 0 <= frame_count <= 500:
-        raise InputError("frame_count", frame_count, "an integer in [0, 500]")
-    outputs = {"snapshot_dir": None if snapshot_dir is None else Path(snapshot_dir),
-               "snapshot_interval": snapshot_interval, "frame_count": frame_count}  # fmt: skip
+    outputs = _field_outputs(snapshot_dir, snapshot_interval, frame_count)
     velocity = (1.0 - slip) * omega * r
     travel = abs(velocity) * duration
     dem = material.require_dem()
@@ -192,12 +206,7 @@ def run_wheel(
     if bed is None:
         spec = default_wheel_bed(body, travel=travel, grain_diameter=d, kind=kind, packing=packing, seed=seed)
         spec = dataclasses.replace(spec, gravity=gravity)
-
-        def settle(t: float, f: float) -> None:
-            if progress is not None:
-                progress(0.0, 0.3 * f)
-
-        bed = prepare_bed(material, spec, progress=settle)
+        bed = _settled_bed(material, spec, progress)
     lmp = bed.lmp
     try:
         params = _place_wheel(bed, body, r, load, omega, velocity, slip, duration, travel, record_interval,

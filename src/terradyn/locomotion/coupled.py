@@ -59,6 +59,90 @@ def _as_stateful(terrain: Any) -> StatefulTerrainModel:
     )
 
 
+#: the series columns, in the order of the integrator's rows
+_SERIES_NAMES = (
+    "time_s",
+    "x_m",
+    "z_m",
+    "theta_rad",
+    "vx_m_s",
+    "vz_m_s",
+    "force_x_N",
+    "force_z_N",
+    "torque_y_Nm",
+    "sinkage_m",
+)
+
+
+@dataclass(frozen=True)
+class _Motion:
+    """The checked drive: ``load`` [N], translational ``mass`` [kg], spin ``omega`` [rad/s], forward
+    speed ``vx`` [m/s] (None: free), time step ``dt`` [s] and the number of ``steps``."""
+
+    load: float
+    mass: float
+    omega: float
+    vx: float | None
+    dt: float
+    steps: int
+
+
+def _integrate(
+    model: StatefulTerrainModel,
+    outline: np.ndarray,
+    pose: Pose2D,
+    motion: _Motion,
+    progress: Callable[[float, float], None] | None,
+) -> np.ndarray:
+    """Semi-implicit Euler from ``pose``: the terrain's step wrench updates the free velocities, then
+    the pose moves with them. One row per step, the columns of :data:`_SERIES_NAMES` (the sinkage from
+    the lowest ``outline`` point)."""
+    dt, omega, vx, mass, load = motion.dt, motion.omega, motion.vx, motion.mass, motion.load
+    x, z, theta = pose.x, pose.z, pose.theta
+    vx_now = 0.0 if vx is None else float(vx)
+    vz_now = 0.0
+    cols = np.zeros((motion.steps, 10))
+    for k in range(motion.steps):
+        twist = Twist2D(vx_now, vz_now, omega)
+        w = model.step(Pose2D(x, z, theta), twist, dt)
+        if not (math.isfinite(w.fx) and math.isfinite(w.fz) and math.isfinite(w.torque_y)):
+            raise SolverError(f"terrain {model.name!r} returned a non-finite wrench at t = {k * dt:.4g} s")
+        if vx is None:
+            vx_now += dt * w.fx / mass
+        vz_now += dt * (w.fz - load) / mass
+        x += dt * vx_now
+        z += dt * vz_now
+        theta += dt * omega
+        c, s = math.cos(theta), math.sin(theta)
+        low = z + float(np.min(-s * outline[:, 0] + c * outline[:, 1]))
+        cols[k] = ((k + 1) * dt, x, z, theta, vx_now, vz_now, w.fx, w.fz, w.torque_y, -low)
+        if progress is not None:
+            progress((k + 1) * dt, (k + 1) / motion.steps)
+    return cols
+
+
+def _summary(
+    series: dict[str, np.ndarray], motion: _Motion, average_fraction: float, body: Body
+) -> dict[str, float]:
+    """Means over the last ``average_fraction`` of the steps; the slip of a spinning body with a
+    nominal radius."""
+    steps, omega = motion.steps, motion.omega
+    tail = slice(int(steps * (1.0 - average_fraction)), steps)
+    summary = {
+        "sinkage_m": float(series["sinkage_m"][tail].mean()),
+        "force_x_N": float(series["force_x_N"][tail].mean()),
+        "force_z_N": float(series["force_z_N"][tail].mean()),
+        "drive_torque_Nm": float(-series["torque_y_Nm"][tail].mean()),
+        "vx_m_s": float(series["vx_m_s"][tail].mean()),
+        "load_N": float(motion.load),
+        "omega_rad_s": float(omega),
+    }
+    radius = getattr(body, "outer_radius", None)
+    if omega != 0 and radius is not None:
+        summary["slip"] = 1.0 - summary["vx_m_s"] / (omega * float(radius))
+    return summary
+
+
 def simulate_coupled(
     body: Body,
     terrain: StatefulTerrainModel | TerrainModel | Material,
@@ -108,56 +192,13 @@ def simulate_coupled(
     if steps > 10_000_000:
         raise InputError("dt", dt, f"at least {duration / 1e7:.3g} s (at most 1e7 steps)")
     outline = np.vstack([np.asarray(p, dtype=float) for p in body.outline(body.size / 50.0)])
-
-    x, z, theta = pose.x, pose.z, pose.theta
-    vx_now = 0.0 if vx is None else float(vx)
-    vz_now = 0.0
+    motion = _Motion(load, mass, omega, vx, dt, steps)
     if initialize:
         model.init(body, pose)
-    cols = np.zeros((steps, 10))
     t0 = time.perf_counter()
-    for k in range(steps):
-        twist = Twist2D(vx_now, vz_now, omega)
-        w = model.step(Pose2D(x, z, theta), twist, dt)
-        if not (math.isfinite(w.fx) and math.isfinite(w.fz) and math.isfinite(w.torque_y)):
-            raise SolverError(f"terrain {model.name!r} returned a non-finite wrench at t = {k * dt:.4g} s")
-        if vx is None:
-            vx_now += dt * w.fx / mass
-        vz_now += dt * (w.fz - load) / mass
-        x += dt * vx_now
-        z += dt * vz_now
-        theta += dt * omega
-        c, s = math.cos(theta), math.sin(theta)
-        low = z + float(np.min(-s * outline[:, 0] + c * outline[:, 1]))
-        cols[k] = ((k + 1) * dt, x, z, theta, vx_now, vz_now, w.fx, w.fz, w.torque_y, -low)
-        if progress is not None:
-            progress((k + 1) * dt, (k + 1) / steps)
-    names = (
-        "time_s",
-        "x_m",
-        "z_m",
-        "theta_rad",
-        "vx_m_s",
-        "vz_m_s",
-        "force_x_N",
-        "force_z_N",
-        "torque_y_Nm",
-        "sinkage_m",
-    )
-    series = {n: cols[:, i] for i, n in enumerate(names)}
-    tail = slice(int(steps * (1.0 - average_fraction)), steps)
-    summary = {
-        "sinkage_m": float(series["sinkage_m"][tail].mean()),
-        "force_x_N": float(series["force_x_N"][tail].mean()),
-        "force_z_N": float(series["force_z_N"][tail].mean()),
-        "drive_torque_Nm": float(-series["torque_y_Nm"][tail].mean()),
-        "vx_m_s": float(series["vx_m_s"][tail].mean()),
-        "load_N": float(load),
-        "omega_rad_s": float(omega),
-    }
-    radius = getattr(body, "outer_radius", None)
-    if omega != 0 and radius is not None:
-        summary["slip"] = 1.0 - summary["vx_m_s"] / (omega * float(radius))
+    cols = _integrate(model, outline, pose, motion, progress)
+    series = {n: cols[:, i] for i, n in enumerate(_SERIES_NAMES)}
+    summary = _summary(series, motion, average_fraction, body)
     meta = {
         "terrain": model.name,
         "body": repr(body),

@@ -416,6 +416,62 @@ def prescribed_body_setup(
     return specs, c, eff
 
 
+@dataclass(frozen=True)
+class _IntrusionPath:
+    """The checked intrusion: ``depth`` [m] of the reading, ``direction`` [rad] below +x, body
+    ``angle`` [rad], ``speed`` [m/s] and the averaging ``window`` [m] of depth centred on ``depth``."""
+
+    depth: float
+    direction: float
+    angle: float
+    speed: float
+    window: float
+
+
+def _intrusion_path(
+    depth: float, direction: float, angle: float, speed: float, averaging_window: float | None, h: float
+) -> _IntrusionPath:
+    """The intrusion's inputs checked; the window defaults to max(4 cells, 0.2 depth) (cell ``h`` [m])."""
+    check_positive("depth", depth)
+    hint = "the body must enter the bed from the surface"
+    check_range("direction", direction, math.radians(5.0), math.radians(175.0), unit="rad", hint=hint)
+    angle = check_range("angle", angle, -2 * math.pi, 2 * math.pi, unit="rad")
+    check_positive("speed", speed)
+    window = max(4.0 * h, 0.2 * depth) if averaging_window is None else averaging_window
+    return _IntrusionPath(depth, direction, angle, speed, window)
+
+
+def _intrusion_inputs(path: _IntrusionPath, settle: float, grid: BedGrid, frame_count: int) -> dict[str, Any]:
+    """The run's inputs as its record keeps them (:func:`_run_inputs`)."""
+    return dict(
+        run="intrusion",
+        depth=path.depth,
+        direction=path.direction,
+        angle=path.angle,
+        speed=path.speed,
+        averaging_window=path.window,
+        settle_time=settle,
+        bed_width=grid.width,
+        bed_depth=grid.depth,
+        frame_count=frame_count,
+    )
+
+
+def _intrusion_summary(series: dict[str, np.ndarray], path: _IntrusionPath) -> dict[str, Any]:
+    """Force and torque averaged over the rows whose depth is within the window, and the inputs."""
+    sel = np.abs(series["depth_m"] - path.depth) <= 0.5 * path.window
+    if not np.any(sel):  # pragma: no cover - the run always passes the window
+        raise InputError("averaging_window", path.window, "a window containing recorded rows", "widen it")
+    return {
+        "depth_m": float(path.depth),
+        **{k: float(series[k][sel].mean()) for k in ("force_x_N", "force_z_N", "torque_y_Nm")},
+        "direction_rad": float(path.direction),
+        "angle_rad": float(path.angle),
+        "speed_m_s": float(path.speed),
+        "averaging_window_m": float(path.window),
+    }
+
+
 def run_intrusion(
     body: Body,
     material: Material | GranularModel,
@@ -472,15 +528,9 @@ def run_intrusion(
         "run_intrusion", body, material, legacy, bed, resolution, outputs, stroke
     )
     outputs, h = specs["outputs"], c.cell_size
-    check_positive("depth", depth)
-    hint = "the body must enter the bed from the surface"
-    check_range("direction", direction, math.radians(5.0), math.radians(175.0), unit="rad", hint=hint)
-    angle = check_range("angle", angle, -2 * math.pi, 2 * math.pi, unit="rad")
-    check_positive("speed", speed)
-    window = specs["stroke"].averaging_window
-    window = max(4.0 * h, 0.2 * depth) if window is None else window
+    path = _intrusion_path(depth, direction, angle, speed, specs["stroke"].averaging_window, h)
     seg = body_segments(eff, h)
-    grid, pose0, travel = _intrusion_bed(seg, c, depth, window, direction, angle)
+    grid, pose0, travel = _intrusion_bed(seg, c, depth, path.window, direction, path.angle)
     dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=speed)
     settle_phases, settle = _settle_phases(c, grid.depth, dt)
     cos_d, sin_d = _direction_vector(direction)
@@ -491,34 +541,13 @@ def run_intrusion(
     ]
     every = _output_every(outputs, dt, speed, 0.25 * h, 4 * h)
     state = _body_state(c, seg, pose0, np.zeros(2, dtype=np.bool_), 1.0, np.zeros(2), body.width)
-    named = dict(
-        run="intrusion",
-        depth=depth,
-        direction=direction,
-        angle=angle,
-        speed=speed,
-        averaging_window=window,
-        settle_time=settle,
-        bed_width=grid.width,
-        bed_depth=grid.depth,
-        frame_count=outputs.frame_count,
-    )
+    named = _intrusion_inputs(path, settle, grid, outputs.frame_count)
     runner = _runner(c, grid, state, dt, phases, every, speed, outputs, _run_inputs(c, body, named))
     runner.window = c.bed.window or 0.0
     wall = _execute(runner, outputs.resume, eff)
     series = _series(runner, body.width, skip_phases=1)
     series = {"depth_m": -series["z_m"], **series}
-    sel = np.abs(series["depth_m"] - depth) <= 0.5 * window
-    if not np.any(sel):  # pragma: no cover - the run always passes the window
-        raise InputError("averaging_window", window, "a window containing recorded rows", "widen it")
-    summary = {
-        "depth_m": float(depth),
-        **{k: float(series[k][sel].mean()) for k in ("force_x_N", "force_z_N", "torque_y_Nm")},
-        "direction_rad": float(direction),
-        "angle_rad": float(angle),
-        "speed_m_s": float(speed),
-        "averaging_window_m": float(window),
-    }
+    summary = _intrusion_summary(series, path)
     meta = _metadata(runner, c.model, body, eff, wall)
     return IntrusionResult(series, summary, meta, runner.particles.fields(), runner.frames, runner.frame())
 

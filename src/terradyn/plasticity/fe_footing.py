@@ -287,6 +287,63 @@ class FEFooting:
         }
 
 
+def _check_material(friction_coefficient: float, flow: str, base: str) -> float:
+    """The cone's friction coefficient mu in [0.05, 5], the flow rule and the footing base, checked."""
+    mu = float(friction_coefficient)
+    if not (math.isfinite(mu) and 0.05 <= mu <= 5.0):
+        raise InputError("friction_coefficient", friction_coefficient, "a number in [0.05, 5]")
+    if flow not in ("isochoric", "associated"):
+        raise InputError("flow", flow, "'isochoric' or 'associated'")
+    if base not in ("smooth", "rough"):
+        raise InputError("base", base, "'smooth' or 'rough'")
+    return mu
+
+
+def _check_mesh(
+    elements_per_half_width: int,
+    domain_widths: tuple[float, float],
+    fine_widths: tuple[float, float],
+    growth: float,
+) -> tuple[float, float, float, float]:
+    """The mesh inputs checked: (domain half-width, domain depth, fine half-width, fine depth) [B]."""
+    if not (isinstance(elements_per_half_width, int) and 2 <= elements_per_half_width <= 400):
+        raise InputError("elements_per_half_width", elements_per_half_width, "an integer in [2, 400]")
+    half_l, depth = (float(v) for v in domain_widths)
+    fine_x, fine_z = (float(v) for v in fine_widths)
+    if not (0.5 <= fine_x <= half_l and 0.0 < fine_z <= depth):
+        raise InputError(
+            "fine_widths", fine_widths, "(half-width in [0.5, domain half-width], depth in (0, domain depth])"
+        )
+    if not (1.0 <= growth <= 1.5):
+        raise InputError("growth", growth, "a ratio in [1, 1.5]")
+    return half_l, depth, fine_x, fine_z
+
+
+def _check_loading(
+    settlement_ratio: float,
+    poisson_ratio: float,
+    youngs_modulus: float,
+    density: float,
+    gravity: float,
+    crossings: float,
+    hold_crossings: float,
+    damping: float,
+) -> None:
+    """One :class:`InputError` line for the first bad elastic, weight, push or hold input."""
+    if not (0.0 < settlement_ratio <= 0.2):
+        raise InputError("settlement_ratio", settlement_ratio, "a number in (0, 0.2]")
+    if not (0.0 <= poisson_ratio < 0.5):
+        raise InputError("poisson_ratio", poisson_ratio, "a number in [0, 0.5)")
+    for name, value in (("youngs_modulus", youngs_modulus), ("density", density), ("gravity", gravity),
+                        ("crossings", crossings)):  # fmt: skip
+        if not (math.isfinite(value) and value > 0.0):
+            raise InputError(name, value, "a positive number")
+    if not (math.isfinite(hold_crossings) and 0.0 <= hold_crossings <= 1e4):
+        raise InputError("hold_crossings", hold_crossings, "a number in [0, 1e4]")
+    if not (0.0 <= damping < 1.0):
+        raise InputError("damping", damping, "a number in [0, 1)")
+
+
 def fe_strip_footing(
     friction_coefficient: float,
     *,
@@ -318,35 +375,11 @@ def fe_strip_footing(
     (2 per element along x plus z), after 20 crossings of relaxation under gravity; then held still
     for ``hold_crossings`` crossings (``N_gamma_held``: the mean over the hold's last quarter).
     """
-    mu = float(friction_coefficient)
-    if not (math.isfinite(mu) and 0.05 <= mu <= 5.0):
-        raise InputError("friction_coefficient", friction_coefficient, "a number in [0.05, 5]")
-    if flow not in ("isochoric", "associated"):
-        raise InputError("flow", flow, "'isochoric' or 'associated'")
-    if base not in ("smooth", "rough"):
-        raise InputError("base", base, "'smooth' or 'rough'")
-    if not (isinstance(elements_per_half_width, int) and 2 <= elements_per_half_width <= 400):
-        raise InputError("elements_per_half_width", elements_per_half_width, "an integer in [2, 400]")
-    half_l, depth = (float(v) for v in domain_widths)
-    fine_x, fine_z = (float(v) for v in fine_widths)
-    if not (0.5 <= fine_x <= half_l and 0.0 < fine_z <= depth):
-        raise InputError(
-            "fine_widths", fine_widths, "(half-width in [0.5, domain half-width], depth in (0, domain depth])"
-        )
-    if not (1.0 <= growth <= 1.5):
-        raise InputError("growth", growth, "a ratio in [1, 1.5]")
-    if not (0.0 < settlement_ratio <= 0.2):
-        raise InputError("settlement_ratio", settlement_ratio, "a number in (0, 0.2]")
-    if not (0.0 <= poisson_ratio < 0.5):
-        raise InputError("poisson_ratio", poisson_ratio, "a number in [0, 0.5)")
-    for name, value in (("youngs_modulus", youngs_modulus), ("density", density), ("gravity", gravity),
-                        ("crossings", crossings)):  # fmt: skip
-        if not (math.isfinite(value) and value > 0.0):
-            raise InputError(name, value, "a positive number")
-    if not (math.isfinite(hold_crossings) and 0.0 <= hold_crossings <= 1e4):
-        raise InputError("hold_crossings", hold_crossings, "a number in [0, 1e4]")
-    if not (0.0 <= damping < 1.0):
-        raise InputError("damping", damping, "a number in [0, 1)")
+    mu = _check_material(friction_coefficient, flow, base)
+    half_l, depth, fine_x, fine_z = _check_mesh(elements_per_half_width, domain_widths, fine_widths, growth)
+    _check_loading(
+        settlement_ratio, poisson_ratio, youngs_modulus, density, gravity, crossings, hold_crossings, damping
+    )
     h = 0.5 * width / elements_per_half_width
     xs = _graded(fine_x * width, half_l * width, h, growth, 0.25 * width)
     zs = -_graded(fine_z * width, depth * width, h, growth, 0.25 * width)[::-1]
