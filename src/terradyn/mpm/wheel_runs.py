@@ -231,8 +231,28 @@ class _WheelMotion:
         return next((name for on, name in modes if on), "self-propelled")
 
 
-def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, drive_torque, drawbar_load,
-                  max_omega, forward_speed=None) -> _WheelMotion:  # fmt: skip
+@dataclass(frozen=True)
+class _WheelCommand:
+    """The run as the caller asked for it: ``load`` [N], spin ``omega`` [rad/s], ``slip``,
+    ``drive_torque`` [N m], ``drawbar_load`` [N], ``max_omega`` [rad/s] under a torque, ``inertia``
+    [kg m^2] (None: a uniform disc) and ``forward_speed`` [m/s] of a towed body."""
+
+    load: float
+    omega: float | None
+    slip: float | None
+    drive_torque: float | None
+    drawbar_load: float
+    max_omega: float
+    inertia: float | None
+    forward_speed: float | None
+
+
+def _wheel_motion(c: _Common, drive: Drive, radius: float, reach: float, cmd: _WheelCommand) -> _WheelMotion:
+    """The checked drive of ``cmd`` for a wheel of nominal ``radius`` and ``reach`` [m]: one
+    :class:`InputError` line for the first inconsistent or out-of-range command."""
+    load, omega, slip, drive_torque = cmd.load, cmd.omega, cmd.slip, cmd.drive_torque
+    drawbar_load, max_omega = cmd.drawbar_load, cmd.max_omega
+    forward_speed: Any = cmd.forward_speed  # a number where ``towed`` is true
     check_positive("load", load)
     torque_mode = drive_torque is not None
     towed = forward_speed is not None
@@ -309,22 +329,6 @@ def _wheel_motion(c: _Common, drive: Drive, radius, reach, load, omega, slip, dr
     return _WheelMotion(
         torque_mode, torque, omega_cmd, slip, towed, spin, v_forward, travel, duration, sink_time
     )
-
-
-@dataclass(frozen=True)
-class _WheelCommand:
-    """The run as the caller asked for it: ``load`` [N], spin ``omega`` [rad/s], ``slip``,
-    ``drive_torque`` [N m], ``drawbar_load`` [N], ``max_omega`` [rad/s] under a torque, ``inertia``
-    [kg m^2] (None: a uniform disc) and ``forward_speed`` [m/s] of a towed body."""
-
-    load: float
-    omega: float | None
-    slip: float | None
-    drive_torque: float | None
-    drawbar_load: float
-    max_omega: float
-    inertia: float | None
-    forward_speed: float | None
 
 
 @dataclass(frozen=True, eq=False)
@@ -485,8 +489,7 @@ def run_wheel(
     reach = float(np.max(np.hypot(seg[:, 0], seg[:, 1])))
     shape = _WheelShape(seg, radius, reach, wheel.width)
     cmd = _WheelCommand(load, omega, slip, drive_torque, drawbar_load, max_omega, inertia, forward_speed)
-    args = (radius, reach, load, omega, slip, drive_torque, drawbar_load, max_omega, forward_speed)
-    m = _wheel_motion(c, drive, *args)
+    m = _wheel_motion(c, drive, radius, reach, cmd)
     grid, pose0 = _wheel_bed(seg, c, m.travel, m.direction)
     v_max = m.spin * reach + (m.spin * radius if m.torque_mode else abs(m.v_forward)) + math.sqrt(2 * g * h)
     dt = stable_time_step(c.model, h, cfl=c.resolution.cfl, speed=v_max)
