@@ -287,10 +287,11 @@ def _coupled(
     dt = s.dt if s.dt is not None else 0.25 * stable_time_step(body, material, mass=mass, omega_max=omega)
     duration = case.duration or DRIVE_RADIANS / omega
     lowest = float(np.min(np.concatenate(body.outline())[:, 1]))
+    assert case.load is not None  # _plane_body refused a prescribed sinkage
     res = simulate_coupled(
         body,
         terrain,
-        load=case.load or 0.0,
+        load=case.load,
         pose=Pose2D(0.0, -lowest, 0.0),
         duration=duration,
         dt=dt,
